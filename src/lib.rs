@@ -1,0 +1,30 @@
+//! # intrinsym — detection and characterization of intrinsic symmetry
+//!
+//! An implementation of Mukhopadhyay, Bhandarkar & Porikli, *Detection and Characterization of
+//! Intrinsic Symmetry*: the self-maps of a surface that preserve intrinsic distances, including
+//! partial, overlapping and pose-hidden ones.
+//!
+//! ```text
+//! mesh ─ validate ─▶ spectral ─▶ (eigenvalues λ, M-orthonormal eigenvectors Φ)
+//!                       │
+//!           ┌───────────┼───────────────┐
+//!       descriptors   distance        (reused by maps)
+//!         (WKS)     (biharmonic)
+//!           └─────┬─────┘
+//!              sampling ─▶ voting ─▶ maps ─▶ characterize ─▶ cluster ─▶ Result
+//! ```
+//!
+//! Modules exist as their stages are implemented: [`mesh`] (validation and file input) and
+//! [`spectral`] (cotangent Laplacian, lumped mass, shift-invert block Lanczos) so far;
+//! [`shapes`] generates test and benchmark meshes.
+
+#![warn(missing_docs)]
+
+pub mod error;
+pub mod mesh;
+pub mod shapes;
+pub mod spectral;
+
+pub use error::Error;
+pub use mesh::{Mesh, MeshParams};
+pub use spectral::{Eigenbasis, EigenParams};

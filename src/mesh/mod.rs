@@ -1,0 +1,520 @@
+//! Triangle meshes: validation, clean-up decisions and file input.
+//!
+//! A [`Mesh`] is built from row-major arrays, `vertices` (n × 3, `f64`) and `triangles`
+//! (m × 3, `u32`), the layout of the C API and of every mesh file. Building it validates the
+//! input; what is checked, and what is decided for each problem, is the contract every front
+//! end (Rust, C, MeshLab, CLI) inherits:
+//!
+//! | input problem | decision |
+//! |---|---|
+//! | array length not a multiple of 3 | error [`MeshError::BadLength`] |
+//! | no vertex or no triangle | error [`MeshError::Empty`] |
+//! | NaN or ±inf coordinate | error [`MeshError::NonFinite`] |
+//! | index ≥ number of vertices | error [`MeshError::IndexOutOfRange`] |
+//! | the same vertex twice in one triangle | error [`MeshError::RepeatedIndex`] |
+//! | an edge shared by more than two triangles | error [`MeshError::NonManifoldEdge`] |
+//! | zero-area (collinear or collapsed) triangles | **kept** and counted in [`MeshInfo::degenerate_triangles`]: the Laplacian is built on intrinsically mollified edge lengths (Sharp & Crane 2020), so they get a tiny positive area and finite cotangents; dropping them would punch holes |
+//! | every triangle degenerate (zero total area) | error [`MeshError::Degenerate`] |
+//! | vertices used by no triangle | **ignored** (not part of the computation; results mark them "no image", confidence 0), counted in [`MeshInfo::isolated_vertices`] |
+//! | several connected components | by default the **largest** (by area) is processed and the others are reported as ignored vertices ([`ComponentPolicy::Largest`]); [`ComponentPolicy::Reject`] makes it error [`MeshError::Disconnected`]. Intrinsic symmetry is defined per connected surface: a map cannot be continuous across components, and the spectrum of a disconnected surface mixes the components' spectra |
+//!
+//! Polygon faces in files are fan-triangulated by the readers in [`io`]; vertex indices in
+//! every result are those of the input arrays ([`Mesh::input_index`] maps back).
+
+pub mod io;
+
+pub use io::{read_mesh, IoError, RawMesh};
+
+use std::fmt;
+
+/// What to do with a mesh that has several connected components.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+#[non_exhaustive]
+pub enum ComponentPolicy {
+    /// Process the component with the largest surface area; ignore the others.
+    #[default]
+    Largest,
+    /// Refuse the mesh with [`MeshError::Disconnected`].
+    Reject,
+}
+
+/// Parameters of mesh validation.
+#[derive(Clone, Debug, Default)]
+#[non_exhaustive]
+pub struct MeshParams {
+    /// Several connected components: process the largest (default) or reject.
+    pub components: ComponentPolicy,
+}
+
+/// Facts found while validating a mesh (warnings, not errors).
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+#[non_exhaustive]
+pub struct MeshInfo {
+    /// Number of vertices in the input arrays.
+    pub input_vertices: usize,
+    /// Number of triangles in the input arrays.
+    pub input_triangles: usize,
+    /// Triangles with (numerically) zero area that were kept.
+    pub degenerate_triangles: usize,
+    /// Input vertices referenced by no triangle (ignored).
+    pub isolated_vertices: usize,
+    /// Number of connected components in the input.
+    pub components: usize,
+    /// Vertices of the components that were not processed (ignored).
+    pub ignored_component_vertices: usize,
+}
+
+/// Why a mesh was refused.
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum MeshError {
+    /// An array's length is not a multiple of 3.
+    BadLength {
+        /// "vertices" or "triangles".
+        array: &'static str,
+        /// The length given.
+        len: usize,
+    },
+    /// No vertex or no triangle.
+    Empty,
+    /// More vertices than `u32` indices can address.
+    TooLarge {
+        /// Number of vertices given.
+        vertices: usize,
+    },
+    /// A coordinate is NaN or infinite.
+    NonFinite {
+        /// Input index of the vertex.
+        vertex: usize,
+    },
+    /// A triangle refers to a vertex that does not exist.
+    IndexOutOfRange {
+        /// Input index of the triangle.
+        triangle: usize,
+        /// The offending index.
+        index: u32,
+        /// Number of vertices.
+        vertices: usize,
+    },
+    /// A triangle uses the same vertex twice.
+    RepeatedIndex {
+        /// Input index of the triangle.
+        triangle: usize,
+    },
+    /// An edge is shared by more than two triangles.
+    NonManifoldEdge {
+        /// First endpoint (input index).
+        a: u32,
+        /// Second endpoint (input index).
+        b: u32,
+        /// Number of triangles sharing the edge.
+        triangles: usize,
+    },
+    /// The surface has zero total area.
+    Degenerate,
+    /// Several connected components and [`ComponentPolicy::Reject`].
+    Disconnected {
+        /// Number of components.
+        components: usize,
+    },
+}
+
+impl fmt::Display for MeshError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            MeshError::BadLength { array, len } => {
+                write!(f, "{array} array has length {len}, not a multiple of 3")
+            }
+            MeshError::Empty => write!(f, "mesh has no vertices or no triangles"),
+            MeshError::TooLarge { vertices } => {
+                write!(f, "{vertices} vertices exceed the 32-bit index range")
+            }
+            MeshError::NonFinite { vertex } => {
+                write!(f, "vertex {vertex} has a NaN or infinite coordinate")
+            }
+            MeshError::IndexOutOfRange { triangle, index, vertices } => write!(
+                f,
+                "triangle {triangle} refers to vertex {index}, but there are only {vertices} vertices"
+            ),
+            MeshError::RepeatedIndex { triangle } => {
+                write!(f, "triangle {triangle} uses the same vertex twice")
+            }
+            MeshError::NonManifoldEdge { a, b, triangles } => write!(
+                f,
+                "edge ({a}, {b}) is shared by {triangles} triangles (non-manifold; at most 2 allowed)"
+            ),
+            MeshError::Degenerate => write!(f, "all triangles have zero area"),
+            MeshError::Disconnected { components } => write!(
+                f,
+                "mesh has {components} connected components (process the largest with ComponentPolicy::Largest)"
+            ),
+        }
+    }
+}
+
+impl std::error::Error for MeshError {}
+
+/// A validated triangle mesh: one connected, edge-manifold surface with finite coordinates.
+#[derive(Clone, Debug)]
+pub struct Mesh {
+    /// `(n, 3)` positions of the processed vertices.
+    pub vertices: Vec<[f64; 3]>,
+    /// `(m, 3)` triangles indexing [`Mesh::vertices`].
+    pub triangles: Vec<[u32; 3]>,
+    /// `(n,)` input index of each processed vertex.
+    pub input_index: Vec<u32>,
+    /// What validation found.
+    pub info: MeshInfo,
+}
+
+/// Relative area below which a triangle counts as degenerate: `|e1 × e2| ≤ DEGENERATE_REL · (longest edge)²`.
+const DEGENERATE_REL: f64 = 1e-12;
+
+impl Mesh {
+    /// Validates row-major arrays: `vertices` (3n values), `triangles` (3m indices).
+    pub fn from_slices(vertices: &[f64], triangles: &[u32], params: &MeshParams) -> Result<Mesh, MeshError> {
+        if vertices.len() % 3 != 0 {
+            return Err(MeshError::BadLength { array: "vertices", len: vertices.len() });
+        }
+        if triangles.len() % 3 != 0 {
+            return Err(MeshError::BadLength { array: "triangles", len: triangles.len() });
+        }
+        let v: Vec<[f64; 3]> = vertices.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
+        let t: Vec<[u32; 3]> = triangles.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
+        Mesh::new(v, t, params)
+    }
+
+    /// Validates a mesh given as vertex and triangle lists.
+    pub fn new(vertices: Vec<[f64; 3]>, triangles: Vec<[u32; 3]>, params: &MeshParams) -> Result<Mesh, MeshError> {
+        let n = vertices.len();
+        let m = triangles.len();
+        if n == 0 || m == 0 {
+            return Err(MeshError::Empty);
+        }
+        if n > u32::MAX as usize {
+            return Err(MeshError::TooLarge { vertices: n });
+        }
+        if let Some(i) = vertices.iter().position(|p| !p.iter().all(|x| x.is_finite())) {
+            return Err(MeshError::NonFinite { vertex: i });
+        }
+        for (ti, t) in triangles.iter().enumerate() {
+            for &i in t {
+                if i as usize >= n {
+                    return Err(MeshError::IndexOutOfRange { triangle: ti, index: i, vertices: n });
+                }
+            }
+            if t[0] == t[1] || t[1] == t[2] || t[0] == t[2] {
+                return Err(MeshError::RepeatedIndex { triangle: ti });
+            }
+        }
+        check_edge_manifold(&triangles)?;
+
+        let areas: Vec<f64> = triangles.iter().map(|t| triangle_area(&vertices, t)).collect();
+        let degenerate = triangles
+            .iter()
+            .zip(&areas)
+            .filter(|(t, &a)| 2.0 * a <= DEGENERATE_REL * longest_edge_sq(&vertices, t))
+            .count();
+        let total_area: f64 = areas.iter().sum();
+        if !(total_area > 0.0) || degenerate == m {
+            return Err(MeshError::Degenerate);
+        }
+
+        // Connected components of the triangles (through shared vertices).
+        let mut uf = UnionFind::new(n);
+        for t in &triangles {
+            uf.union(t[0] as usize, t[1] as usize);
+            uf.union(t[0] as usize, t[2] as usize);
+        }
+        let mut used = vec![false; n];
+        for t in &triangles {
+            for &i in t {
+                used[i as usize] = true;
+            }
+        }
+        let isolated = used.iter().filter(|&&u| !u).count();
+        let mut comp_area = std::collections::HashMap::new();
+        for (t, a) in triangles.iter().zip(&areas) {
+            *comp_area.entry(uf.find(t[0] as usize)).or_insert(0.0) += a;
+        }
+        let components = comp_area.len();
+        if components > 1 && params.components == ComponentPolicy::Reject {
+            return Err(MeshError::Disconnected { components });
+        }
+        // Largest component by area; ties broken by the smallest root for determinism.
+        let keep_root = comp_area
+            .iter()
+            .map(|(&r, &a)| (r, a))
+            .max_by(|x, y| x.1.total_cmp(&y.1).then(y.0.cmp(&x.0)))
+            .map(|(r, _)| r)
+            .expect("at least one triangle");
+
+        let mut new_index = vec![u32::MAX; n];
+        let mut input_index = Vec::new();
+        let mut kept_vertices = Vec::new();
+        for i in 0..n {
+            if used[i] && uf.find(i) == keep_root {
+                new_index[i] = input_index.len() as u32;
+                input_index.push(i as u32);
+                kept_vertices.push(vertices[i]);
+            }
+        }
+        let mut kept_triangles = Vec::with_capacity(m);
+        let mut kept_degenerate = 0;
+        for (t, a) in triangles.iter().zip(&areas) {
+            if uf.find(t[0] as usize) == keep_root {
+                kept_triangles.push([new_index[t[0] as usize], new_index[t[1] as usize], new_index[t[2] as usize]]);
+                if 2.0 * a <= DEGENERATE_REL * longest_edge_sq(&vertices, t) {
+                    kept_degenerate += 1;
+                }
+            }
+        }
+        let ignored_component_vertices = n - isolated - input_index.len();
+        Ok(Mesh {
+            vertices: kept_vertices,
+            triangles: kept_triangles,
+            input_index,
+            info: MeshInfo {
+                input_vertices: n,
+                input_triangles: m,
+                degenerate_triangles: kept_degenerate,
+                isolated_vertices: isolated,
+                components,
+                ignored_component_vertices,
+            },
+        })
+    }
+
+    /// Number of processed vertices.
+    pub fn num_vertices(&self) -> usize {
+        self.vertices.len()
+    }
+
+    /// Number of processed triangles.
+    pub fn num_triangles(&self) -> usize {
+        self.triangles.len()
+    }
+
+    /// Total surface area.
+    pub fn area(&self) -> f64 {
+        self.triangles.iter().map(|t| triangle_area(&self.vertices, t)).sum()
+    }
+
+    /// Length of the bounding-box diagonal.
+    pub fn bbox_diagonal(&self) -> f64 {
+        let mut lo = [f64::INFINITY; 3];
+        let mut hi = [f64::NEG_INFINITY; 3];
+        for p in &self.vertices {
+            for d in 0..3 {
+                lo[d] = lo[d].min(p[d]);
+                hi[d] = hi[d].max(p[d]);
+            }
+        }
+        ((hi[0] - lo[0]).powi(2) + (hi[1] - lo[1]).powi(2) + (hi[2] - lo[2]).powi(2)).sqrt()
+    }
+}
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn norm_sq(a: [f64; 3]) -> f64 {
+    a[0] * a[0] + a[1] * a[1] + a[2] * a[2]
+}
+
+/// Area of triangle `t` of `v`.
+pub(crate) fn triangle_area(v: &[[f64; 3]], t: &[u32; 3]) -> f64 {
+    let p = v[t[0] as usize];
+    let a = sub(v[t[1] as usize], p);
+    let b = sub(v[t[2] as usize], p);
+    let c = [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+    0.5 * norm_sq(c).sqrt()
+}
+
+fn longest_edge_sq(v: &[[f64; 3]], t: &[u32; 3]) -> f64 {
+    let [a, b, c] = t.map(|i| v[i as usize]);
+    norm_sq(sub(a, b)).max(norm_sq(sub(b, c))).max(norm_sq(sub(c, a)))
+}
+
+/// Errors on the first edge shared by more than two triangles (reported with input indices).
+fn check_edge_manifold(triangles: &[[u32; 3]]) -> Result<(), MeshError> {
+    let mut keys: Vec<u64> = Vec::with_capacity(3 * triangles.len());
+    for t in triangles {
+        for k in 0..3 {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            let (a, b) = if a < b { (a, b) } else { (b, a) };
+            keys.push(((a as u64) << 32) | b as u64);
+        }
+    }
+    keys.sort_unstable();
+    let mut i = 0;
+    while i < keys.len() {
+        let mut j = i + 1;
+        while j < keys.len() && keys[j] == keys[i] {
+            j += 1;
+        }
+        if j - i > 2 {
+            return Err(MeshError::NonManifoldEdge {
+                a: (keys[i] >> 32) as u32,
+                b: keys[i] as u32,
+                triangles: j - i,
+            });
+        }
+        i = j;
+    }
+    Ok(())
+}
+
+struct UnionFind {
+    parent: Vec<usize>,
+}
+
+impl UnionFind {
+    fn new(n: usize) -> Self {
+        UnionFind { parent: (0..n).collect() }
+    }
+    fn find(&mut self, mut x: usize) -> usize {
+        while self.parent[x] != x {
+            self.parent[x] = self.parent[self.parent[x]];
+            x = self.parent[x];
+        }
+        x
+    }
+    fn union(&mut self, a: usize, b: usize) {
+        let (ra, rb) = (self.find(a), self.find(b));
+        if ra != rb {
+            // Smaller root wins: roots, and so component choice, do not depend on call order.
+            let (lo, hi) = if ra < rb { (ra, rb) } else { (rb, ra) };
+            self.parent[hi] = lo;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn tet() -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
+        (
+            vec![[0., 0., 0.], [1., 0., 0.], [0., 1., 0.], [0., 0., 1.]],
+            vec![[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]],
+        )
+    }
+
+    fn err(v: Vec<[f64; 3]>, t: Vec<[u32; 3]>) -> MeshError {
+        Mesh::new(v, t, &MeshParams::default()).unwrap_err()
+    }
+
+    #[test]
+    fn accepts_closed_tetrahedron() {
+        let (v, t) = tet();
+        let m = Mesh::new(v, t, &MeshParams::default()).unwrap();
+        assert_eq!(m.num_vertices(), 4);
+        assert_eq!(m.info.components, 1);
+        assert!((m.area() - (1.5 + 3f64.sqrt() / 2.0)).abs() < 1e-12);
+    }
+
+    #[test]
+    fn bad_lengths() {
+        let p = MeshParams::default();
+        assert!(matches!(
+            Mesh::from_slices(&[0.0; 8], &[0, 1, 2], &p),
+            Err(MeshError::BadLength { array: "vertices", len: 8 })
+        ));
+        assert!(matches!(
+            Mesh::from_slices(&[0.0; 9], &[0, 1], &p),
+            Err(MeshError::BadLength { array: "triangles", len: 2 })
+        ));
+    }
+
+    #[test]
+    fn empty() {
+        assert_eq!(err(vec![], vec![]), MeshError::Empty);
+        assert_eq!(err(vec![[0.; 3]; 3], vec![]), MeshError::Empty);
+    }
+
+    #[test]
+    fn non_finite() {
+        for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            let (mut v, t) = tet();
+            v[2][1] = bad;
+            assert_eq!(err(v, t), MeshError::NonFinite { vertex: 2 });
+        }
+    }
+
+    #[test]
+    fn index_out_of_range() {
+        let (v, mut t) = tet();
+        t[3][1] = 4;
+        assert_eq!(err(v, t), MeshError::IndexOutOfRange { triangle: 3, index: 4, vertices: 4 });
+    }
+
+    #[test]
+    fn repeated_index() {
+        let (v, mut t) = tet();
+        t[1] = [1, 3, 1];
+        assert_eq!(err(v, t), MeshError::RepeatedIndex { triangle: 1 });
+    }
+
+    #[test]
+    fn non_manifold_edge() {
+        let (mut v, mut t) = tet();
+        v.push([1., 1., 1.]);
+        t.push([0, 1, 4]); // third triangle on edge (0,1)
+        assert_eq!(err(v, t), MeshError::NonManifoldEdge { a: 0, b: 1, triangles: 3 });
+        // The same triangle twice is non-manifold too.
+        let (v, mut t) = tet();
+        t.push(t[0]);
+        assert!(matches!(err(v, t), MeshError::NonManifoldEdge { triangles: 3, .. }));
+    }
+
+    #[test]
+    fn all_degenerate_is_an_error() {
+        let v = vec![[0., 0., 0.], [1., 0., 0.], [2., 0., 0.], [3., 0., 0.]];
+        assert_eq!(err(v, vec![[0, 1, 2], [1, 3, 2]]), MeshError::Degenerate);
+        assert_eq!(err(vec![[1., 1., 1.]; 3], vec![[0, 1, 2]]), MeshError::Degenerate);
+    }
+
+    #[test]
+    fn degenerate_triangles_are_kept_and_counted() {
+        // The tetrahedron with edge (1,2) split at vertex 4: faces [0,2,1] and [1,2,3] become four.
+        let (mut v, _) = tet();
+        v.push([0.5, 0.5, 0.0]);
+        let t = vec![[0, 2, 4], [0, 4, 1], [0, 1, 3], [1, 4, 3], [4, 2, 3], [0, 3, 2]];
+        let m = Mesh::new(v.clone(), t.clone(), &MeshParams::default()).unwrap();
+        assert_eq!(m.info.degenerate_triangles, 0);
+        // Collapse vertex 4 onto vertex 1: faces [0,4,1] and [1,4,3] get zero area but stay.
+        v[4] = v[1];
+        let m = Mesh::new(v, t, &MeshParams::default()).unwrap();
+        assert_eq!(m.info.degenerate_triangles, 2);
+        assert_eq!(m.num_triangles(), 6);
+    }
+
+    #[test]
+    fn isolated_vertices_are_ignored() {
+        let (mut v, t) = tet();
+        v.insert(0, [9., 9., 9.]);
+        let t: Vec<[u32; 3]> = t.iter().map(|f| f.map(|i| i + 1)).collect();
+        let m = Mesh::new(v, t, &MeshParams::default()).unwrap();
+        assert_eq!(m.info.isolated_vertices, 1);
+        assert_eq!(m.num_vertices(), 4);
+        assert_eq!(m.input_index, vec![1, 2, 3, 4]);
+        assert!(m.triangles.iter().flatten().all(|&i| i < 4));
+    }
+
+    #[test]
+    fn components_largest_or_reject() {
+        let (v, t) = tet();
+        // Second tetrahedron, twice as large, offset; its vertices come first in the input.
+        let mut v2: Vec<[f64; 3]> = v.iter().map(|p| [2. * p[0] + 5., 2. * p[1], 2. * p[2]]).collect();
+        v2.extend(v.iter().copied());
+        let mut t2 = t.clone();
+        t2.extend(t.iter().map(|f| f.map(|i| i + 4)));
+        let m = Mesh::new(v2.clone(), t2.clone(), &MeshParams::default()).unwrap();
+        assert_eq!(m.info.components, 2);
+        assert_eq!(m.info.ignored_component_vertices, 4);
+        assert_eq!(m.input_index, vec![0, 1, 2, 3]);
+        let reject = MeshParams { components: ComponentPolicy::Reject };
+        assert_eq!(Mesh::new(v2, t2, &reject).unwrap_err(), MeshError::Disconnected { components: 2 });
+    }
+}
