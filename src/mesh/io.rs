@@ -246,6 +246,22 @@ pub fn read_ply(mut reader: impl Read) -> Result<RawMesh, String> {
     Ok(mesh)
 }
 
+/// Writes an ASCII OFF file (17 significant digits: coordinates round-trip exactly).
+pub fn write_off(path: impl AsRef<Path>, vertices: &[[f64; 3]], triangles: &[[u32; 3]]) -> Result<(), IoError> {
+    use std::io::Write;
+    let path = path.as_ref();
+    let os = |source| IoError::Os { path: path.into(), source };
+    let mut w = std::io::BufWriter::new(std::fs::File::create(path).map_err(os)?);
+    writeln!(w, "OFF\n{} {} 0", vertices.len(), triangles.len()).map_err(os)?;
+    for p in vertices {
+        writeln!(w, "{:?} {:?} {:?}", p[0], p[1], p[2]).map_err(os)?;
+    }
+    for t in triangles {
+        writeln!(w, "3 {} {} {}", t[0], t[1], t[2]).map_err(os)?;
+    }
+    w.flush().map_err(os)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -318,6 +334,11 @@ mod tests {
         let off = dir.join("q.OFF");
         std::fs::write(&off, "OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0.5\n4 0 1 2 3\n").unwrap();
         assert_eq!(read_mesh(&off).unwrap(), quad());
+        let copy = dir.join("copy.off");
+        write_off(&copy, &quad().vertices, &quad().triangles).unwrap();
+        let back = read_mesh(&copy).unwrap();
+        assert_eq!(back.vertices, quad().vertices);
+        assert_eq!(back.triangles, quad().triangles);
         let bad = dir.join("q.stl");
         std::fs::write(&bad, "").unwrap();
         assert!(matches!(read_mesh(&bad), Err(IoError::UnknownFormat { .. })));

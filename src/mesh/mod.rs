@@ -23,7 +23,7 @@
 
 pub mod io;
 
-pub use io::{read_mesh, IoError, RawMesh};
+pub use io::{read_mesh, write_off, IoError, RawMesh};
 
 use std::fmt;
 
