@@ -20,11 +20,21 @@
 
 #![warn(missing_docs)]
 
+pub mod characterize;
+pub mod cluster;
+pub mod descriptors;
+pub mod detect;
+pub mod distance;
 pub mod error;
+pub mod eval;
+pub mod maps;
 pub mod mesh;
+pub mod sampling;
 pub mod shapes;
 pub mod spectral;
+pub mod voting;
 
+pub use detect::{detect, Detection, Kind, Params, Symmetry};
 pub use error::Error;
 pub use mesh::{Mesh, MeshParams};
 pub use spectral::{Eigenbasis, EigenParams};

@@ -300,6 +300,29 @@ impl Mesh {
         self.triangles.iter().map(|t| triangle_area(&self.vertices, t)).sum()
     }
 
+    /// Vertex adjacency in CSR form: neighbours of `v` are `nbr[off[v]..off[v + 1]]`, sorted.
+    pub fn adjacency(&self) -> (Vec<usize>, Vec<u32>) {
+        let n = self.num_vertices();
+        let mut edges: Vec<(u32, u32)> = Vec::with_capacity(6 * self.num_triangles());
+        for t in &self.triangles {
+            for k in 0..3 {
+                let (a, b) = (t[k], t[(k + 1) % 3]);
+                edges.push((a, b));
+                edges.push((b, a));
+            }
+        }
+        edges.sort_unstable();
+        edges.dedup();
+        let mut off = vec![0usize; n + 1];
+        for &(a, _) in &edges {
+            off[a as usize + 1] += 1;
+        }
+        for v in 0..n {
+            off[v + 1] += off[v];
+        }
+        (off, edges.into_iter().map(|(_, b)| b).collect())
+    }
+
     /// Length of the bounding-box diagonal.
     pub fn bbox_diagonal(&self) -> f64 {
         let mut lo = [f64::INFINITY; 3];

@@ -4,7 +4,11 @@
 //!   multiplicity 2l+1;
 //! - [`bumpy_torus`]: a torus with a smooth, symmetry-breaking radial bump, sized for the
 //!   spectral benchmarks (3·s² vertices);
-//! - [`needle_sphere`]: an icosphere with collapsed (zero-area) and needle triangles.
+//! - [`needle_sphere`]: an icosphere with collapsed (zero-area) and needle triangles;
+//! - [`creature`]: mirror-symmetric animals built on the icosphere (whose vertex set is exactly
+//!   symmetric under x → −x, so every vertex's true mirror image is known), optionally posed
+//!   (limbs rotated with smooth skinning) and noised (normal displacement), with ground truth:
+//!   [`quadruped`] (4 legs, head, tail) and [`star`] (n arms in a plane).
 //!
 //! Every function returns a validated [`Mesh`].
 
@@ -107,4 +111,240 @@ pub fn needle_sphere(level: u32) -> Mesh {
         }
     }
     build(v, t)
+}
+
+/// For each vertex, the vertex at its mirror position across the plane `x_axis = 0`
+/// (`u32::MAX` where there is none). Exact on meshes built symmetric, like the icosphere.
+pub fn mirror_map(mesh: &Mesh, axis: usize) -> Vec<u32> {
+    let key = |p: [f64; 3]| p.map(|x| (x * 1e9).round() as i64);
+    let index: std::collections::HashMap<[i64; 3], u32> =
+        mesh.vertices.iter().enumerate().map(|(i, &p)| (key(p), i as u32)).collect();
+    mesh.vertices
+        .iter()
+        .map(|&p| {
+            let mut q = p;
+            q[axis] = -q[axis];
+            *index.get(&key(q)).unwrap_or(&u32::MAX)
+        })
+        .collect()
+}
+
+/// A limb: a protrusion grown from the sphere cap around `direction`.
+#[derive(Clone, Debug)]
+pub struct Limb {
+    /// Centre of the cap on the unit sphere (normalized by the constructor).
+    pub direction: [f64; 3],
+    /// Direction the limb grows along.
+    pub axis: [f64; 3],
+    /// Length of the limb.
+    pub length: f64,
+    /// Half-angle of the cap (radians): the limb's thickness.
+    pub cap: f64,
+    /// Pose: rotation angle (radians) about `bend_axis` at the limb's base.
+    pub bend: f64,
+    /// Axis of the pose rotation.
+    pub bend_axis: [f64; 3],
+}
+
+/// A generated animal and what is known about it.
+#[derive(Clone, Debug)]
+pub struct Creature {
+    /// The mesh.
+    pub mesh: Mesh,
+    /// `(n,)` the true left–right mirror image of each vertex (the rest shape is symmetric in x).
+    pub mirror: Vec<u32>,
+    /// `(n,)` limb of each vertex (`usize::MAX` for the body): the vertices of limb j are those
+    /// whose weight for j exceeds 1/2.
+    pub limb: Vec<usize>,
+    /// The limbs as built.
+    pub limbs: Vec<Limb>,
+    /// `(n, 3)` positions before posing and noise (the symmetric rest shape).
+    pub rest: Vec<[f64; 3]>,
+}
+
+fn dot3(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn smoothstep(t: f64) -> f64 {
+    let t = t.clamp(0.0, 1.0);
+    t * t * (3.0 - 2.0 * t)
+}
+
+/// Rotation of `p` about the axis `k` (unit) through `c` by `angle` (Rodrigues).
+fn rotate(p: [f64; 3], c: [f64; 3], k: [f64; 3], angle: f64) -> [f64; 3] {
+    let v = [p[0] - c[0], p[1] - c[1], p[2] - c[2]];
+    let (s, co) = angle.sin_cos();
+    let kv = dot3(k, v);
+    let cr = [k[1] * v[2] - k[2] * v[1], k[2] * v[0] - k[0] * v[2], k[0] * v[1] - k[1] * v[0]];
+    std::array::from_fn(|d| c[d] + v[d] * co + cr[d] * s + k[d] * kv * (1.0 - co))
+}
+
+/// Builds a creature on the icosphere of `level`: an ellipsoid body with radii `body` and the
+/// given limbs; posed by each limb's `bend`, then displaced along vertex normals by Gaussian
+/// noise of standard deviation `noise` × bounding-box diagonal (seeded).
+pub fn creature(level: u32, body: [f64; 3], limbs: &[Limb], noise: f64, seed: u64) -> Creature {
+    let (sphere, t) = icosphere_arrays(level);
+    let limbs: Vec<Limb> = limbs.iter().map(|l| Limb { direction: normalize(l.direction), axis: normalize(l.axis), bend_axis: normalize(l.bend_axis), ..l.clone() }).collect();
+    let n = sphere.len();
+    let mut rest = Vec::with_capacity(n);
+    let mut limb_of = vec![usize::MAX; n];
+    let mut weights = vec![vec![0.0; limbs.len()]; n];
+    for (v, &u) in sphere.iter().enumerate() {
+        let mut p = [body[0] * u[0], body[1] * u[1], body[2] * u[2]];
+        for (j, l) in limbs.iter().enumerate() {
+            let theta = dot3(u, l.direction).clamp(-1.0, 1.0).acos();
+            let t = theta / l.cap;
+            if t < 1.0 {
+                let grow = l.length * (1.0 - smoothstep(t));
+                for d in 0..3 {
+                    p[d] += grow * l.axis[d];
+                }
+                // Skinning weight: 1 inside the limb, blending to 0 over its base.
+                weights[v][j] = 1.0 - smoothstep((t - 0.55) / 0.45);
+                if weights[v][j] > 0.5 {
+                    limb_of[v] = j;
+                }
+            }
+        }
+        rest.push(p);
+    }
+    // Pose: rotate each limb about its base point with the blended angle.
+    let mut posed = rest.clone();
+    for (j, l) in limbs.iter().enumerate() {
+        if l.bend == 0.0 {
+            continue;
+        }
+        let base = [body[0] * l.direction[0], body[1] * l.direction[1], body[2] * l.direction[2]];
+        for v in 0..n {
+            if weights[v][j] > 0.0 {
+                posed[v] = rotate(posed[v], base, l.bend_axis, l.bend * weights[v][j]);
+            }
+        }
+    }
+    let mut mesh = build(posed, t);
+    if noise > 0.0 {
+        let diag = mesh.bbox_diagonal();
+        let normals = vertex_normals(&mesh);
+        let mut state = seed ^ 0xD1B5_4A32_D192_ED03;
+        let mut next = || {
+            state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
+            let mut z = state;
+            z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+            z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+            ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for (p, nrm) in mesh.vertices.iter_mut().zip(&normals) {
+            let (a, b) = (next().max(1e-300), next());
+            let g = (-2.0 * a.ln()).sqrt() * (2.0 * std::f64::consts::PI * b).cos();
+            for d in 0..3 {
+                p[d] += noise * diag * g * nrm[d];
+            }
+        }
+    }
+    let rest_mesh = build(rest.clone(), mesh.triangles.clone());
+    let mirror = mirror_map(&rest_mesh, 0);
+    Creature { mesh, mirror, limb: limb_of, limbs, rest }
+}
+
+impl Creature {
+    /// Ground truth of the partial symmetry "limb `i` → limb `j`" for limbs of equal shape: for
+    /// each vertex of limb `i`, the vertices of limb `j` at the same limb-local rest position,
+    /// and at its mirror across the limb's own plane (a limb is mirror-symmetric, so either
+    /// image is correct).
+    pub fn limb_truth(&self, i: usize, j: usize) -> Vec<(usize, Vec<usize>)> {
+        let base = |l: usize| {
+            let vs: Vec<usize> = (0..self.rest.len()).filter(|&v| self.limb[v] == l).collect();
+            let mut c = [0.0; 3];
+            for &v in &vs {
+                for d in 0..3 {
+                    c[d] += self.rest[v][d] / vs.len() as f64;
+                }
+            }
+            (vs, c)
+        };
+        let (vi, ci) = base(i);
+        let (vj, cj) = base(j);
+        let nearest = |q: [f64; 3]| {
+            *vj.iter()
+                .min_by(|&&a, &&b| {
+                    let da: f64 = (0..3).map(|d| (self.rest[a][d] - q[d]).powi(2)).sum();
+                    let db: f64 = (0..3).map(|d| (self.rest[b][d] - q[d]).powi(2)).sum();
+                    da.total_cmp(&db)
+                })
+                .expect("limb j has vertices")
+        };
+        vi.iter()
+            .map(|&v| {
+                let p = self.rest[v];
+                let local = [p[0] - ci[0], p[1] - ci[1], p[2] - ci[2]];
+                let same = nearest([cj[0] + local[0], cj[1] + local[1], cj[2] + local[2]]);
+                let flipped = nearest([cj[0] - local[0], cj[1] + local[1], cj[2] + local[2]]);
+                (v, vec![same, flipped])
+            })
+            .collect()
+    }
+}
+
+/// Area-weighted unit vertex normals.
+pub fn vertex_normals(mesh: &Mesh) -> Vec<[f64; 3]> {
+    let mut nrm = vec![[0.0; 3]; mesh.num_vertices()];
+    for t in &mesh.triangles {
+        let [a, b, c] = t.map(|i| mesh.vertices[i as usize]);
+        let e1 = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+        let e2 = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
+        let cr = [e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]];
+        for &i in t {
+            for d in 0..3 {
+                nrm[i as usize][d] += cr[d];
+            }
+        }
+    }
+    nrm.into_iter().map(|v| { let r = dot3(v, v).sqrt().max(f64::MIN_POSITIVE); v.map(|x| x / r) }).collect()
+}
+
+/// Pose of a [`quadruped`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Pose {
+    /// The symmetric rest pose.
+    Rest,
+    /// Legs swung asymmetrically, head turned, tail raised.
+    Walking,
+}
+
+/// A four-legged animal (body along z, legs down, head at +z, tail at −z), mirror-symmetric
+/// in x at rest. Limbs 0..4 are the legs (front-left, front-right, hind-left, hind-right),
+/// 4 the head, 5 the tail. `level` 5 gives 10,242 vertices.
+pub fn quadruped(level: u32, pose: Pose, noise: f64, seed: u64) -> Creature {
+    let walking = pose == Pose::Walking;
+    let x = [1.0, 0.0, 0.0];
+    let leg = |sx: f64, sz: f64, bend: f64| Limb {
+        direction: [0.55 * sx, -0.75, 0.55 * sz],
+        axis: [0.0, -1.0, 0.0],
+        length: 1.1,
+        cap: 0.38,
+        bend: if walking { bend } else { 0.0 },
+        bend_axis: x,
+    };
+    let limbs = [
+        leg(1.0, 1.0, 0.5),
+        leg(-1.0, 1.0, -0.3),
+        leg(1.0, -1.0, -0.4),
+        leg(-1.0, -1.0, 0.35),
+        Limb { direction: [0.0, 0.45, 1.0], axis: [0.0, 0.35, 1.0], length: 0.6, cap: 0.5, bend: if walking { 0.6 } else { 0.0 }, bend_axis: [0.0, 1.0, 0.0] },
+        Limb { direction: [0.0, 0.25, -1.0], axis: [0.0, 0.3, -1.0], length: 0.9, cap: 0.22, bend: if walking { -0.7 } else { 0.0 }, bend_axis: x },
+    ];
+    creature(level, [0.5, 0.45, 1.0], &limbs, noise, seed)
+}
+
+/// A flat star with `arms` equal arms in the xz-plane (n mirror planes and n−1 rotations).
+pub fn star(arms: usize, level: u32) -> Creature {
+    let limbs: Vec<Limb> = (0..arms)
+        .map(|j| {
+            let a = 2.0 * std::f64::consts::PI * j as f64 / arms as f64 + 0.5 * std::f64::consts::PI;
+            let d = [a.cos(), 0.0, a.sin()];
+            Limb { direction: d, axis: d, length: 1.2, cap: 0.45, bend: 0.0, bend_axis: [0.0, 1.0, 0.0] }
+        })
+        .collect();
+    creature(level, [0.8, 0.35, 0.8], &limbs, 0.0, 0)
 }

@@ -1,0 +1,342 @@
+//! The whole pipeline: mesh → eigenbasis → WKS + biharmonic distance → samples → voting →
+//! dense maps → characterization → groups, as one call ([`detect`]) returning a [`Detection`].
+//!
+//! Symmetries are reported strongest first (largest region, then lowest distortion). A
+//! candidate's map is kept when it moves points (displacement ≥ `min_displacement`, so the
+//! identity, which always fits the descriptors, is rejected), preserves distances (distortion ≤
+//! `max_distortion`), and is not the same map as a stronger one (agreement on ≥ 80% of the
+//! shared samples).
+
+use std::time::Instant;
+
+use faer::Mat;
+
+use crate::characterize;
+use crate::cluster;
+use crate::descriptors::{wks, WksParams};
+use crate::distance::biharmonic;
+use crate::error::Error;
+use crate::maps::{self, Context, MapParams};
+use crate::mesh::Mesh;
+use crate::sampling::farthest_point;
+use crate::spectral::{Eigenbasis, EigenParams};
+use crate::voting::{vote, VotingParams};
+
+/// Parameters of the whole pipeline. Every threshold is relative (scale- and resolution-free).
+#[derive(Clone, Debug)]
+#[non_exhaustive]
+pub struct Params {
+    /// Eigenpairs (default k = 100).
+    pub eigen: EigenParams,
+    /// Wave kernel signature.
+    pub wks: WksParams,
+    /// Farthest-point samples (default 64; the paper uses 20–100).
+    pub samples: usize,
+    /// Seed of the first sample and of the eigensolver's start.
+    pub seed: u64,
+    /// Correspondence space voting.
+    pub voting: VotingParams,
+    /// Dense maps.
+    pub maps: MapParams,
+    /// Width `s` of the inverted Gaussian in the complexity weight (default 1).
+    pub complexity_width: f64,
+    /// Number of groups, or `None` to choose automatically.
+    pub groups: Option<usize>,
+    /// Maps whose anchors' distances change by more than this fraction of the diameter on
+    /// average are rejected (default 0.02).
+    pub max_distortion: f64,
+    /// Maps that move points less than this fraction of the diameter on average are rejected
+    /// as the identity (default 0.05).
+    pub min_displacement: f64,
+    /// At most this many voting candidates get a dense map (default 24), largest first.
+    pub max_candidates: usize,
+    /// At most this many symmetries are reported (default 32).
+    pub max_symmetries: usize,
+    /// Largest rotation order looked for (default 12).
+    pub max_order: usize,
+}
+
+impl Default for Params {
+    fn default() -> Self {
+        Params {
+            eigen: EigenParams::default(),
+            wks: WksParams::default(),
+            samples: 64,
+            seed: 0,
+            voting: VotingParams::default(),
+            maps: MapParams::default(),
+            complexity_width: 1.0,
+            groups: None,
+            max_distortion: 0.02,
+            min_displacement: 0.05,
+            max_candidates: 24,
+            max_symmetries: 32,
+            max_order: 12,
+        }
+    }
+}
+
+/// Whether a symmetry covers the whole shape.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Kind {
+    /// The region covers at least `maps.global_fraction` of the surface; the map is defined everywhere.
+    Global,
+    /// The region is a part of the surface.
+    Partial,
+}
+
+impl Kind {
+    /// "global" or "partial".
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Kind::Global => "global",
+            Kind::Partial => "partial",
+        }
+    }
+}
+
+/// One detected symmetry. Vertex indices are those of the input arrays.
+#[derive(Clone, Debug)]
+pub struct Symmetry {
+    /// Seed correspondence `(source, target)`: the direction of the map.
+    pub source: usize,
+    /// See `source`.
+    pub target: usize,
+    /// Anchor correspondences `(source, target)` that support the map.
+    pub support_pairs: Vec<(usize, usize)>,
+    /// Global or partial.
+    pub kind: Kind,
+    /// 2 for a reflection-like involution, n for a rotation of order n, 0 if undetermined.
+    pub order: usize,
+    /// Number of vertices in the region.
+    pub region_size: usize,
+    /// `(n_input,)` image of each vertex, −1 outside the region.
+    pub map: Vec<i64>,
+    /// `(n_input,)` confidence in [0, 1].
+    pub confidence: Vec<f64>,
+    /// `(k_f, k_f)` functional map of the pull-back (`Φ(Tv) ≈ Φ(v) C`).
+    pub fmap: Mat<f64>,
+    /// `Σ W|C| / ‖C‖_F` (see [`characterize::complexity`]).
+    pub complexity: f64,
+    /// Group label.
+    pub group: usize,
+    /// Mean `|d(x,y) − d(Tx,Ty)|` over anchor pairs / diameter.
+    pub distortion: f64,
+}
+
+/// Seconds per stage.
+#[derive(Clone, Debug, Default)]
+#[non_exhaustive]
+pub struct Timings {
+    /// Laplacian, mass and eigensolve.
+    pub spectral: f64,
+    /// WKS.
+    pub descriptors: f64,
+    /// Biharmonic embedding.
+    pub distance: f64,
+    /// Farthest point sampling.
+    pub sampling: f64,
+    /// Correspondence space voting.
+    pub voting: f64,
+    /// Dense maps.
+    pub maps: f64,
+    /// Complexity, order, distortion.
+    pub characterize: f64,
+    /// Grouping.
+    pub cluster: f64,
+    /// Everything.
+    pub total: f64,
+}
+
+/// The result of [`detect`].
+#[derive(Clone, Debug)]
+pub struct Detection {
+    /// Number of input vertices (every map has this length).
+    pub vertices: usize,
+    /// Number of input triangles.
+    pub faces: usize,
+    /// Symmetries, strongest first.
+    pub symmetries: Vec<Symmetry>,
+    /// Per-stage timings.
+    pub timings: Timings,
+    /// Candidates voting produced (before map extraction and filtering).
+    pub candidates: usize,
+}
+
+impl Detection {
+    /// `(n_input,)` per-vertex summary: the largest confidence over all symmetries.
+    pub fn vertex_symmetry(&self) -> Vec<f64> {
+        let mut q = vec![0.0f64; self.vertices];
+        for s in &self.symmetries {
+            for (a, &c) in q.iter_mut().zip(&s.confidence) {
+                *a = a.max(c);
+            }
+        }
+        q
+    }
+}
+
+/// Runs the pipeline; `progress(fraction)` returning `false` cancels with
+/// [`crate::spectral::SpectralError::Cancelled`].
+pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool) -> Result<Detection, Error> {
+    let t_all = Instant::now();
+    let mut timings = Timings::default();
+    let cancelled = || Error::Spectral(crate::spectral::SpectralError::Cancelled);
+    let n = mesh.num_vertices();
+
+    let t = Instant::now();
+    let mut eigen = params.eigen.clone();
+    eigen.seed = params.seed;
+    eigen.k = eigen.k.min(n);
+    let basis = Eigenbasis::compute_with_progress(mesh, &eigen, &mut |f| progress(0.6 * f))?;
+    timings.spectral = t.elapsed().as_secs_f64();
+
+    let t = Instant::now();
+    let desc = wks(&basis, &params.wks);
+    timings.descriptors = t.elapsed().as_secs_f64();
+    let t = Instant::now();
+    let emb = biharmonic(&basis);
+    timings.distance = t.elapsed().as_secs_f64();
+    let t = Instant::now();
+    let samples = farthest_point(&emb, params.samples, params.seed);
+    timings.sampling = t.elapsed().as_secs_f64();
+    if !progress(0.62) {
+        return Err(cancelled());
+    }
+
+    let t = Instant::now();
+    let (candidates, vinfo, _sample_dist) = vote(&emb, &desc, &samples, &params.voting);
+    timings.voting = t.elapsed().as_secs_f64();
+    if !progress(0.65) {
+        return Err(cancelled());
+    }
+
+    let t = Instant::now();
+    let mut ctx = Context::new(mesh, &emb, &desc, vinfo.diameter, &params.maps);
+    ctx.basis = Some(&basis);
+    let probes = &samples.vertices;
+    let agree_tol = params.maps.accept * 2.0 * vinfo.diameter;
+    struct Found {
+        dense: maps::DenseMap,
+        seed: (usize, usize),
+        distortion: f64,
+    }
+    let mut found: Vec<Found> = Vec::new();
+    let mut ranked: Vec<&crate::voting::Candidate> = candidates.iter().collect();
+    ranked.sort_by(|a, b| (b.pairs.len() * b.support).cmp(&(a.pairs.len() * a.support)));
+    ranked.truncate(params.max_candidates);
+    for (ci, cand) in ranked.iter().enumerate() {
+        if !progress(0.65 + 0.3 * ci as f64 / ranked.len().max(1) as f64) {
+            return Err(cancelled());
+        }
+        if found.len() >= params.max_symmetries {
+            break;
+        }
+        let anchors: Vec<(usize, usize)> = cand.pairs.iter().map(|&(a, b)| (probes[a], probes[b])).collect();
+        // Skip candidates an accepted map already explains.
+        // (Candidate pairs are only as precise as the sampling: compare within voting's ε.)
+        let explained = found.iter().any(|f| {
+            let ok = anchors.iter().filter(|&&(a, b)| f.dense.map[a] >= 0 && emb.dist(f.dense.map[a] as usize, b) <= vinfo.eps).count();
+            ok * 2 >= anchors.len()
+        });
+        if std::env::var_os("INTRINSYM_DEBUG").is_some() {
+            let fr: Vec<String> = found.iter().map(|f| format!("{}/{}", anchors.iter().filter(|&&(a, b)| f.dense.map[a] >= 0 && emb.dist(f.dense.map[a] as usize, b) <= vinfo.eps).count(), anchors.len())).collect();
+            eprintln!("cand {ci}: explained by found: {fr:?} eps/diam {:.3}", vinfo.eps / vinfo.diameter);
+        }
+        if explained {
+            continue;
+        }
+        let Some(dense) = maps::extract(&ctx, &anchors, probes, vinfo.eps, &params.maps) else {
+            if std::env::var_os("INTRINSYM_DEBUG").is_some() { eprintln!("cand {ci}: pairs {} support {} -> extraction failed", cand.pairs.len(), cand.support); }
+            continue
+        };
+        let displacement = characterize::displacement(&dense.map, probes, &emb, vinfo.diameter);
+        if std::env::var_os("INTRINSYM_DEBUG").is_some() {
+            let d = characterize::distortion(&dense.anchors, &emb, vinfo.diameter);
+            let mean_mis: f64 = dense.mismatch.iter().sum::<f64>() / n as f64 / vinfo.diameter;
+            eprintln!("cand {ci}: pairs {} support {} votes {} -> region {} anchors {} displacement {displacement:.3} distortion {d:.4} mean-mismatch {mean_mis:.4} seed {:?}", cand.pairs.len(), cand.support, cand.votes, dense.region_size, dense.anchors.len(), anchors[0]);
+        }
+        if displacement < params.min_displacement {
+            continue;
+        }
+        let distortion = characterize::distortion(&dense.anchors, &emb, vinfo.diameter);
+        if distortion > params.max_distortion {
+            continue;
+        }
+        // The same map as an accepted one (on the samples both map)?
+        let duplicate = found.iter().position(|f| {
+            let both: Vec<usize> = probes.iter().copied().filter(|&v| f.dense.map[v] >= 0 && dense.map[v] >= 0).collect();
+            let same = both.iter().filter(|&&v| emb.dist(f.dense.map[v] as usize, dense.map[v] as usize) <= agree_tol).count();
+            !both.is_empty() && same * 10 >= both.len() * 8
+        });
+        let seed = anchors[0];
+        match duplicate {
+            Some(i) if found[i].dense.region_size >= dense.region_size => {}
+            Some(i) => found[i] = Found { dense, seed, distortion },
+            None => found.push(Found { dense, seed, distortion }),
+        }
+    }
+    timings.maps = t.elapsed().as_secs_f64();
+
+    let t = Instant::now();
+    found.sort_by(|a, b| b.dense.region_size.cmp(&a.dense.region_size).then(a.distortion.total_cmp(&b.distortion)));
+    let order_tol = params.maps.accept * 2.0 * vinfo.diameter;
+    let mut symmetries: Vec<Symmetry> = found
+        .into_iter()
+        .map(|f| {
+            let fmap = maps::functional_map(&basis, &f.dense.map, params.maps.fmap_size);
+            let complexity = characterize::complexity(&fmap, params.complexity_width);
+            let order = characterize::order(&f.dense.map, probes, &emb, order_tol, params.max_order);
+            let kind = if f.dense.global { Kind::Global } else { Kind::Partial };
+            let to_input = |v: usize| mesh.input_index[v] as usize;
+            let mut map = vec![-1i64; mesh.info.input_vertices];
+            let mut confidence = vec![0.0; mesh.info.input_vertices];
+            for v in 0..n {
+                if f.dense.map[v] >= 0 {
+                    map[to_input(v)] = to_input(f.dense.map[v] as usize) as i64;
+                    confidence[to_input(v)] = f.dense.confidence[v];
+                }
+            }
+            Symmetry {
+                source: to_input(f.seed.0),
+                target: to_input(f.seed.1),
+                support_pairs: f.dense.anchors.iter().map(|&(a, b)| (to_input(a), to_input(b))).collect(),
+                kind,
+                order,
+                region_size: f.dense.region_size,
+                map,
+                confidence,
+                fmap,
+                complexity,
+                group: 0,
+                distortion: f.distortion,
+            }
+        })
+        .collect();
+    timings.characterize = t.elapsed().as_secs_f64();
+
+    let t = Instant::now();
+    let features: Vec<Vec<f64>> = symmetries
+        .iter()
+        .map(|s| {
+            vec![
+                s.complexity,
+                if s.order > 0 { 1.0 / s.order as f64 } else { 0.0 },
+                s.region_size as f64 / n as f64,
+            ]
+        })
+        .collect();
+    for (s, g) in symmetries.iter_mut().zip(cluster::cluster(&features, params.groups)) {
+        s.group = g;
+    }
+    timings.cluster = t.elapsed().as_secs_f64();
+    timings.total = t_all.elapsed().as_secs_f64();
+    progress(1.0);
+    Ok(Detection {
+        vertices: mesh.info.input_vertices,
+        faces: mesh.info.input_triangles,
+        symmetries,
+        timings,
+        candidates: candidates.len(),
+    })
+}

@@ -1,0 +1,103 @@
+//! Biharmonic distance (Lipman, Rustamov & Funkhouser 2010), the paper's eq. (3):
+//! $$d(x,y)^2 = \sum_{i\ge1} \frac{(\varphi_i(x) - \varphi_i(y))^2}{\lambda_i^2}$$
+//! over the computed eigenpairs, skipping the constant one. It is the Euclidean distance between
+//! rows of the embedding `B = [φ_i / λ_i]`, so distances from a few sources to every vertex are
+//! one matrix product (`‖B_x‖² + ‖B_s‖² − 2 B_x·B_s`), never an n × n matrix.
+
+use faer::{Accum, Mat, MatRef, Par};
+
+use crate::spectral::Eigenbasis;
+
+/// The biharmonic embedding of every vertex.
+#[derive(Clone, Debug)]
+pub struct BiharmonicEmbedding {
+    /// `(n, k−1)` rows `B_x = (φ_i(x)/λ_i)_{i≥1}`.
+    pub coords: Mat<f64>,
+    /// `(n,)` squared row norms.
+    pub norms2: Vec<f64>,
+}
+
+/// Builds the embedding from an eigenbasis.
+pub fn biharmonic(basis: &Eigenbasis) -> BiharmonicEmbedding {
+    let n = basis.num_vertices();
+    let k = basis.k();
+    let coords = Mat::<f64>::from_fn(n, k - 1, |v, i| basis.evecs[(v, i + 1)] / basis.evals[i + 1].max(f64::MIN_POSITIVE));
+    let norms2 = (0..n).map(|v| (0..k - 1).map(|i| coords[(v, i)].powi(2)).sum()).collect();
+    BiharmonicEmbedding { coords, norms2 }
+}
+
+impl BiharmonicEmbedding {
+    /// Number of vertices.
+    pub fn len(&self) -> usize {
+        self.norms2.len()
+    }
+
+    /// Whether there are no vertices.
+    pub fn is_empty(&self) -> bool {
+        self.norms2.is_empty()
+    }
+
+    /// Distance between two vertices.
+    pub fn dist(&self, x: usize, y: usize) -> f64 {
+        let (a, b) = (self.coords.row(x), self.coords.row(y));
+        let mut s = 0.0;
+        for i in 0..self.coords.ncols() {
+            s += (a[i] - b[i]).powi(2);
+        }
+        s.sqrt()
+    }
+
+    /// `(n, |sources|)` distances from each source to every vertex.
+    pub fn from_sources(&self, sources: &[usize]) -> Mat<f64> {
+        let n = self.len();
+        let src = Mat::<f64>::from_fn(sources.len(), self.coords.ncols(), |s, i| self.coords[(sources[s], i)]);
+        let mut g = Mat::<f64>::zeros(n, sources.len());
+        faer::linalg::matmul::matmul(g.as_mut(), Accum::Replace, self.coords.as_ref(), src.transpose(), 1.0, Par::Seq);
+        Mat::<f64>::from_fn(n, sources.len(), |v, s| (self.norms2[v] + self.norms2[sources[s]] - 2.0 * g[(v, s)]).max(0.0).sqrt())
+    }
+
+    /// `(|a|, |b|)` distances between two vertex sets.
+    pub fn between(&self, a: &[usize], b: &[usize]) -> Mat<f64> {
+        let ca = Mat::<f64>::from_fn(a.len(), self.coords.ncols(), |s, i| self.coords[(a[s], i)]);
+        let cb = Mat::<f64>::from_fn(b.len(), self.coords.ncols(), |s, i| self.coords[(b[s], i)]);
+        let mut g = Mat::<f64>::zeros(a.len(), b.len());
+        faer::linalg::matmul::matmul(g.as_mut(), Accum::Replace, ca.as_ref(), cb.transpose(), 1.0, Par::Seq);
+        Mat::<f64>::from_fn(a.len(), b.len(), |i, j| (self.norms2[a[i]] + self.norms2[b[j]] - 2.0 * g[(i, j)]).max(0.0).sqrt())
+    }
+
+    /// Coordinates as a matrix view.
+    pub fn as_ref(&self) -> MatRef<'_, f64> {
+        self.coords.as_ref()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{shapes, EigenParams};
+
+    #[test]
+    fn is_a_metric_and_matches_pairwise_formula() {
+        let mesh = shapes::bumpy_torus(12);
+        let mut p = EigenParams::default();
+        p.k = 40;
+        let basis = Eigenbasis::compute(&mesh, &p).unwrap();
+        let emb = biharmonic(&basis);
+        let src = [0usize, 17, 100, 250];
+        let d = emb.from_sources(&src);
+        for (s, &x) in src.iter().enumerate() {
+            assert!(d[(x, s)] < 1e-7 * d[(0, 3)].max(1e-12));
+            for y in [1usize, 50, 300, 431] {
+                let direct: f64 = (1..40).map(|i| ((basis.evecs[(x, i)] - basis.evecs[(y, i)]) / basis.evals[i]).powi(2)).sum::<f64>().sqrt();
+                assert!((d[(y, s)] - direct).abs() < 1e-9 * direct.max(1e-9));
+                assert!((emb.dist(x, y) - direct).abs() < 1e-9 * direct.max(1e-9));
+            }
+        }
+        // Triangle inequality on a few triples.
+        for (a, b, c) in [(0, 17, 100), (250, 3, 77), (5, 6, 400)] {
+            assert!(emb.dist(a, c) <= emb.dist(a, b) + emb.dist(b, c) + 1e-12);
+        }
+        let between = emb.between(&[0, 17], &[100, 250]);
+        assert!((between[(1, 0)] - emb.dist(17, 100)).abs() < 1e-9 * emb.dist(17, 100));
+    }
+}

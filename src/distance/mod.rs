@@ -1,0 +1,6 @@
+//! Intrinsic distance. The paper uses the biharmonic distance ([`biharmonic`]) for sampling and
+//! voting: cheap from the eigenbasis, smooth, and robust to noise.
+
+pub mod biharmonic;
+
+pub use biharmonic::{biharmonic, BiharmonicEmbedding};

@@ -1,0 +1,142 @@
+//! Evaluation protocol (DESIGN.md): error of a vertex = geodesic distance between its predicted
+//! and true image / √area; accuracy@r = fraction of ground-truth pairs with error ≤ r
+//! (unmapped counts as wrong).
+//!
+//! Geodesics are Dijkstra distances on the edge graph, a slight overestimate of the true
+//! surface distance (by a few percent on regular meshes), stopped at the largest radius asked
+//! for, so scoring costs a local search per vertex, not an all-pairs matrix.
+
+use std::cmp::Ordering;
+use std::collections::BinaryHeap;
+
+use crate::mesh::Mesh;
+
+#[derive(PartialEq)]
+struct Item(f64, u32);
+impl Eq for Item {}
+impl PartialOrd for Item {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+impl Ord for Item {
+    fn cmp(&self, other: &Self) -> Ordering {
+        other.0.total_cmp(&self.0).then(other.1.cmp(&self.1))
+    }
+}
+
+/// Edge-graph geodesic distances, bounded: a reusable Dijkstra workspace.
+pub struct Geodesics {
+    off: Vec<usize>,
+    nbr: Vec<u32>,
+    len: Vec<f64>,
+    dist: Vec<f64>,
+    touched: Vec<u32>,
+}
+
+impl Geodesics {
+    /// Prepares the edge graph of `mesh`.
+    pub fn new(mesh: &Mesh) -> Self {
+        let (off, nbr) = mesh.adjacency();
+        let mut len = Vec::with_capacity(nbr.len());
+        for v in 0..mesh.num_vertices() {
+            for &u in &nbr[off[v]..off[v + 1]] {
+                let (p, q) = (mesh.vertices[v], mesh.vertices[u as usize]);
+                len.push(((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) + (p[2] - q[2]).powi(2)).sqrt());
+            }
+        }
+        let n = mesh.num_vertices();
+        Geodesics { off, nbr, len, dist: vec![f64::INFINITY; n], touched: Vec::new() }
+    }
+
+    /// Distance from `a` to `b`, or `f64::INFINITY` when it exceeds `limit`.
+    pub fn distance(&mut self, a: usize, b: usize, limit: f64) -> f64 {
+        for &t in &self.touched {
+            self.dist[t as usize] = f64::INFINITY;
+        }
+        self.touched.clear();
+        let mut heap = BinaryHeap::new();
+        self.dist[a] = 0.0;
+        self.touched.push(a as u32);
+        heap.push(Item(0.0, a as u32));
+        while let Some(Item(d, v)) = heap.pop() {
+            let v = v as usize;
+            if v == b {
+                return d;
+            }
+            if d > self.dist[v] || d > limit {
+                continue;
+            }
+            for e in self.off[v]..self.off[v + 1] {
+                let u = self.nbr[e] as usize;
+                let nd = d + self.len[e];
+                if nd < self.dist[u] && nd <= limit {
+                    if self.dist[u].is_infinite() {
+                        self.touched.push(u as u32);
+                    }
+                    self.dist[u] = nd;
+                    heap.push(Item(nd, u as u32));
+                }
+            }
+        }
+        f64::INFINITY
+    }
+}
+
+/// Accuracy at each radius in `radii` (fractions of √area) of `pred` against the ground-truth
+/// pairs `(x, true image of x)`; `alternatives` are further acceptable images per pair (e.g.
+/// the in-leg mirror), checked too. Unmapped (`pred[x] < 0`) counts as wrong.
+pub fn accuracy(mesh: &Mesh, pred: &[i64], truth: &[(usize, Vec<usize>)], radii: &[f64]) -> Vec<f64> {
+    let scale = mesh.area().sqrt();
+    let limit = radii.iter().cloned().fold(0.0, f64::max) * scale;
+    let mut geo = Geodesics::new(mesh);
+    let mut hits = vec![0usize; radii.len()];
+    for (x, images) in truth {
+        let p = pred[*x];
+        if p < 0 {
+            continue;
+        }
+        let err = images.iter().map(|&t| geo.distance(p as usize, t, limit)).fold(f64::INFINITY, f64::min) / scale;
+        for (h, r) in hits.iter_mut().zip(radii) {
+            if err <= *r {
+                *h += 1;
+            }
+        }
+    }
+    hits.iter().map(|&h| h as f64 / truth.len().max(1) as f64).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::shapes;
+
+    #[test]
+    fn geodesics_on_the_icosphere_are_close_to_great_circles() {
+        let mesh = shapes::icosphere(4);
+        let mut g = Geodesics::new(&mesh);
+        let mirror = shapes::mirror_map(&mesh, 0);
+        // A vertex and its mirror: great-circle distance 2·asin(|x|)... use the angle.
+        for v in [5usize, 100, 700, 2000] {
+            let p = mesh.vertices[v];
+            let q = mesh.vertices[mirror[v] as usize];
+            let angle = (p[0] * q[0] + p[1] * q[1] + p[2] * q[2]).clamp(-1.0, 1.0).acos();
+            let d = g.distance(v, mirror[v] as usize, 10.0);
+            assert!(d >= angle - 1e-9 && d <= angle * 1.15 + 1e-9, "v {v}: {d} vs {angle}");
+        }
+        assert!(g.distance(0, mirror[0] as usize, 1e-6).is_infinite() || mirror[0] == 0);
+    }
+
+    #[test]
+    fn accuracy_of_truth_is_one_and_of_nothing_is_zero() {
+        let mesh = shapes::icosphere(3);
+        let mirror = shapes::mirror_map(&mesh, 0);
+        let truth: Vec<(usize, Vec<usize>)> = (0..mesh.num_vertices()).map(|v| (v, vec![mirror[v] as usize])).collect();
+        let pred: Vec<i64> = mirror.iter().map(|&m| m as i64).collect();
+        assert_eq!(accuracy(&mesh, &pred, &truth, &[0.05, 0.1]), vec![1.0, 1.0]);
+        assert_eq!(accuracy(&mesh, &vec![-1; mesh.num_vertices()], &truth, &[0.05]), vec![0.0]);
+        let identity: Vec<i64> = (0..mesh.num_vertices() as i64).collect();
+        let acc = accuracy(&mesh, &identity, &truth, &[0.05])[0];
+        assert!(acc > 0.0 && acc < 0.2, "{acc}");
+    }
+}

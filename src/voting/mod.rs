@@ -1,0 +1,298 @@
+//! Correspondence space voting (paper §4): from farthest-point samples to candidate symmetries,
+//! each a set of *directed* sample correspondences `x → x'` that support one another.
+//!
+//! 1. **Good voters** (§4.2): sample pairs whose wave kernel signatures are close,
+//!    `δ_WKS(x, x′) ≤ T_WKS`, with `T_WKS` the `wks_quantile` quantile of all pair distances
+//!    (scale- and resolution-free). `δ_WKS` is the root-mean-square over energies of the relative
+//!    difference `(a_e − b_e)/(a_e + b_e)`. Self-pairs `x → x` are the fixed points of a
+//!    reflection (points on its mirror plane): they may join a candidate but never seed one, so
+//!    the identity is never proposed.
+//! 2. **Votes** (§4.3): a directed pair `x → x′` gets a vote from a good voter `y → y′` (both
+//!    orientations of `{y, y′}` are tried) when `|d(x,y) − d(x′,y′)| < ε`; for involutions the
+//!    paper's second criterion `|d(x,y′) − d(x′,y)| < ε` is also required. `ε = eps · diameter`,
+//!    at least the sampling radius (the mirror image of a sample is only near a sample).
+//! 3. **Candidates** (beyond the paper, which stops at "symmetric pairs"): pairs that support
+//!    each other form one symmetry. For each well-voted seed pair and each of a few far-apart
+//!    second pairs consistent with it (two correspondences fix a surface isometry's
+//!    orientation), the candidate grows greedily by the pair consistent with the most members
+//!    (at least `consistency` of them), keeping the correspondence injective. Candidates that
+//!    map most shared samples to within ε of each other are the same symmetry: they are merged
+//!    and their support counted.
+//!
+//! **Rotations** (beyond the paper): the second criterion holds only for involutions; a rotation
+//! of an n-fold shape satisfies the first but not the second. Growth therefore uses the first
+//! criterion alone, so directed pairs of a rotation (`arm₀ → arm₁ → arm₂ …`) form their own
+//! candidate; whether a candidate is an involution is decided later from its map
+//! (`characterize`), not assumed here.
+
+use faer::Mat;
+
+use crate::distance::BiharmonicEmbedding;
+use crate::sampling::Samples;
+
+/// Parameters of [`vote`].
+#[derive(Clone, Debug)]
+#[non_exhaustive]
+pub struct VotingParams {
+    /// Good voters: pairs whose WKS distance is below this quantile of all sample pairs (default 0.2).
+    pub wks_quantile: f64,
+    /// Distance tolerance ε relative to the biharmonic diameter (default 0.04).
+    pub eps: f64,
+    /// A pair joins a candidate when consistent with at least this fraction of its members (default 0.85).
+    pub consistency: f64,
+    /// Candidates smaller than this many correspondences are dropped (default 4).
+    pub min_pairs: usize,
+    /// Second pairs tried per seed (default 6).
+    pub branches: usize,
+}
+
+impl Default for VotingParams {
+    fn default() -> Self {
+        VotingParams { wks_quantile: 0.2, eps: 0.04, consistency: 0.85, min_pairs: 4, branches: 6 }
+    }
+}
+
+/// A candidate symmetry: directed correspondences between samples.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Candidate {
+    /// `(source, target)` indices into the sample list, sources distinct, targets distinct.
+    pub pairs: Vec<(usize, usize)>,
+    /// Votes of the seed pair.
+    pub votes: usize,
+    /// How many seeds grew into this candidate.
+    pub support: usize,
+}
+
+/// What voting saw.
+#[derive(Clone, Debug, Default)]
+#[non_exhaustive]
+pub struct VotingInfo {
+    /// Good-voter directed pairs (without self-pairs).
+    pub good_pairs: usize,
+    /// The absolute ε used.
+    pub eps: f64,
+    /// The biharmonic diameter of the samples.
+    pub diameter: f64,
+    /// Candidates before merging.
+    pub grown: usize,
+}
+
+/// Relative WKS distance between two descriptors (RMS of `(a−b)/(a+b)` over energies), in [0, 1].
+pub fn wks_distance(a: &[f64], b: &[f64]) -> f64 {
+    let s: f64 = a
+        .iter()
+        .zip(b)
+        .map(|(x, y)| {
+            let d = x.abs() + y.abs();
+            if d > 0.0 {
+                ((x - y) / d).powi(2)
+            } else {
+                0.0
+            }
+        })
+        .sum();
+    (s / a.len().max(1) as f64).sqrt()
+}
+
+/// Runs correspondence space voting on the samples; `wks` is `(n, E)`.
+pub fn vote(
+    emb: &BiharmonicEmbedding,
+    wks: &Mat<f64>,
+    samples: &Samples,
+    params: &VotingParams,
+) -> (Vec<Candidate>, VotingInfo, Mat<f64>) {
+    let s = &samples.vertices;
+    let ns = s.len();
+    let dist = emb.between(s, s);
+    let diameter = (0..ns).flat_map(|i| (0..ns).map(move |j| (i, j))).map(|(i, j)| dist[(i, j)]).fold(0.0, f64::max);
+    let cover = samples.radius.iter().cloned().fold(0.0, f64::max);
+    let eps = (params.eps * diameter).max(cover);
+    let desc: Vec<Vec<f64>> = s.iter().map(|&v| (0..wks.ncols()).map(|e| wks[(v, e)]).collect()).collect();
+    let mut wd = Mat::<f64>::zeros(ns, ns);
+    let mut all = Vec::with_capacity(ns * ns / 2);
+    for i in 0..ns {
+        for j in 0..i {
+            let d = wks_distance(&desc[i], &desc[j]);
+            wd[(i, j)] = d;
+            wd[(j, i)] = d;
+            all.push(d);
+        }
+    }
+    all.sort_by(|a, b| a.total_cmp(b));
+    let t_wks = if all.is_empty() { 0.0 } else { all[((params.wks_quantile * all.len() as f64) as usize).min(all.len() - 1)] };
+    // Directed good pairs; self-pairs are appended (they join, never seed).
+    let mut pairs: Vec<(usize, usize)> = Vec::new();
+    for i in 0..ns {
+        for j in 0..ns {
+            if i != j && wd[(i, j)] <= t_wks {
+                pairs.push((i, j));
+            }
+        }
+    }
+    let good_pairs = pairs.len();
+    pairs.extend((0..ns).map(|i| (i, i)));
+    let consistent = |p: (usize, usize), q: (usize, usize)| (dist[(p.0, q.0)] - dist[(p.1, q.1)]).abs() < eps;
+    // Votes (paper §4.3): both criteria, both orientations of the voter.
+    let votes: Vec<usize> = pairs[..good_pairs]
+        .iter()
+        .map(|&(x, xp)| {
+            pairs[..good_pairs]
+                .iter()
+                .filter(|&&(y, yp)| (y, yp) != (x, xp) && y != x)
+                .filter(|&&(y, yp)| {
+                    let c1 = (dist[(x, y)] - dist[(xp, yp)]).abs() < eps;
+                    let c2 = (dist[(x, yp)] - dist[(xp, y)]).abs() < eps;
+                    c1 && c2
+                })
+                .count()
+        })
+        .collect();
+    let mut order: Vec<usize> = (0..good_pairs).collect();
+    order.sort_by(|&a, &b| votes[b].cmp(&votes[a]).then(wd[(pairs[a].0, pairs[a].1)].total_cmp(&wd[(pairs[b].0, pairs[b].1)])));
+
+    let mut grown: Vec<Candidate> = Vec::new();
+    let max_seeds = 2 * ns;
+    for &pi in order.iter().take(max_seeds) {
+        let p = pairs[pi];
+        if votes[pi] == 0 {
+            break;
+        }
+        // Second pairs: consistent with p, far from it (orientation), best voted, distinct targets.
+        let mut seconds: Vec<usize> = (0..good_pairs)
+            .filter(|&qi| {
+                let q = pairs[qi];
+                q.0 != p.0 && q.1 != p.1 && consistent(p, q) && dist[(p.0, q.0)] > 0.25 * diameter
+            })
+            .collect();
+        seconds.sort_by(|&a, &b| votes[b].cmp(&votes[a]));
+        let mut used_targets = Vec::new();
+        let mut tried = 0;
+        for qi in seconds {
+            if tried == params.branches {
+                break;
+            }
+            let q = pairs[qi];
+            if used_targets.iter().any(|&(a, b)| a == q.0 && b == q.1) {
+                continue;
+            }
+            used_targets.push(q);
+            tried += 1;
+            let members = grow(&pairs, vec![p, q], &consistent, params.consistency, ns);
+            if members.len() >= params.min_pairs {
+                let mut sorted = members;
+                sorted.sort();
+                grown.push(Candidate { pairs: sorted, votes: votes[pi], support: 1 });
+            }
+        }
+    }
+    let grown_count = grown.len();
+    let merged = merge(grown, Some(&dist), eps);
+    (merged, VotingInfo { good_pairs, eps, diameter, grown: grown_count }, dist)
+}
+
+/// Greedy growth of an injective set of mutually consistent directed pairs.
+fn grow(
+    pairs: &[(usize, usize)],
+    mut members: Vec<(usize, usize)>,
+    consistent: &dyn Fn((usize, usize), (usize, usize)) -> bool,
+    fraction: f64,
+    ns: usize,
+) -> Vec<(usize, usize)> {
+    let mut src_used = vec![false; ns];
+    let mut dst_used = vec![false; ns];
+    for &(a, b) in &members {
+        src_used[a] = true;
+        dst_used[b] = true;
+    }
+    // count[r] = members consistent with pair r.
+    let mut count: Vec<usize> = pairs.iter().map(|&r| members.iter().filter(|&&m| consistent(m, r)).count()).collect();
+    loop {
+        let need = ((fraction * members.len() as f64).ceil() as usize).max(2);
+        let mut best: Option<usize> = None;
+        for (ri, &r) in pairs.iter().enumerate() {
+            if src_used[r.0] || dst_used[r.1] || count[ri] < need {
+                continue;
+            }
+            // Prefer more consistent; prefer non-self pairs on ties (they carry more information).
+            let better = match best {
+                None => true,
+                Some(b) => count[ri] > count[b] || (count[ri] == count[b] && pairs[b].0 == pairs[b].1 && r.0 != r.1),
+            };
+            if better {
+                best = Some(ri);
+            }
+        }
+        let Some(bi) = best else { break };
+        let r = pairs[bi];
+        members.push(r);
+        src_used[r.0] = true;
+        dst_used[r.1] = true;
+        for (ri, &q) in pairs.iter().enumerate() {
+            if consistent(r, q) {
+                count[ri] += 1;
+            }
+        }
+    }
+    members
+}
+
+/// Merges candidates that are the same symmetry: on the sources both map, at least 70% of
+/// the targets lie within `eps` of each other (or, with no distances, are equal). The larger
+/// candidate (then the better voted) is kept and counts the other's support.
+fn merge(mut grown: Vec<Candidate>, dist: Option<&Mat<f64>>, eps: f64) -> Vec<Candidate> {
+    grown.sort_by(|a, b| b.pairs.len().cmp(&a.pairs.len()).then(b.votes.cmp(&a.votes)).then(a.pairs.cmp(&b.pairs)));
+    let mut out: Vec<Candidate> = Vec::new();
+    'next: for c in grown {
+        for o in out.iter_mut() {
+            let mut shared = 0;
+            let mut agree = 0;
+            for &(s, t) in &c.pairs {
+                if let Some(&(_, u)) = o.pairs.iter().find(|p| p.0 == s) {
+                    shared += 1;
+                    let close = match dist {
+                        Some(d) => d[(t, u)] < eps,
+                        None => t == u,
+                    };
+                    if close {
+                        agree += 1;
+                    }
+                }
+            }
+            if shared * 2 >= c.pairs.len() && agree * 10 >= shared * 7 {
+                o.support += c.support;
+                continue 'next;
+            }
+        }
+        out.push(c);
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn wks_distance_is_relative_and_bounded() {
+        let a = [1.0, 2.0, 3.0];
+        assert_eq!(wks_distance(&a, &a), 0.0);
+        let b = [2.0, 4.0, 6.0];
+        let c = [20.0, 40.0, 60.0];
+        assert!((wks_distance(&a, &b) - 1.0 / 3.0).abs() < 1e-12);
+        assert!((wks_distance(&c, &c.map(|x| 2.0 * x)) - wks_distance(&a, &b)).abs() < 1e-12);
+        assert!(wks_distance(&a, &[0.0; 3]) <= 1.0);
+    }
+
+    #[test]
+    fn merge_keeps_distinct_and_absorbs_contained() {
+        let c = |pairs: Vec<(usize, usize)>| Candidate { pairs, votes: 1, support: 1 };
+        let big = c(vec![(0, 1), (1, 0), (2, 3), (3, 2), (4, 4), (5, 6), (6, 5), (7, 7), (8, 9), (9, 8)]);
+        let sub = c(vec![(0, 1), (1, 0), (2, 3), (3, 2)]);
+        let other = c(vec![(0, 2), (2, 4), (4, 0), (1, 3)]);
+        let merged = merge(vec![sub, big.clone(), other.clone()], None, 0.0);
+        assert_eq!(merged.len(), 2);
+        assert_eq!(merged[0].pairs, big.pairs);
+        assert_eq!(merged[0].support, 2);
+        assert_eq!(merged[1].pairs, other.pairs);
+    }
+}
