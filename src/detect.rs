@@ -48,8 +48,11 @@ pub struct Params {
     /// Maps that move points less than this fraction of the diameter on average are rejected
     /// as the identity (default 0.05).
     pub min_displacement: f64,
-    /// At most this many voting candidates get a dense map (default 24), largest first.
+    /// At most this many voting candidates get a dense map (default 8), largest first.
     pub max_candidates: usize,
+    /// At most this many (nearly) global maps are refined by ZoomOut, best profile maps first
+    /// (default 4): refinement is the costliest step.
+    pub max_refinements: usize,
     /// At most this many symmetries are reported (default 32).
     pub max_symmetries: usize,
     /// Largest rotation order looked for (default 12).
@@ -69,7 +72,8 @@ impl Default for Params {
             groups: None,
             max_distortion: 0.02,
             min_displacement: 0.05,
-            max_candidates: 24,
+            max_candidates: 8,
+            max_refinements: 4,
             max_symmetries: 32,
             max_order: 12,
         }
@@ -220,60 +224,85 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
         dense: maps::DenseMap,
         seed: (usize, usize),
         distortion: f64,
+        complexity: f64,
     }
     let mut found: Vec<Found> = Vec::new();
     let mut ranked: Vec<&crate::voting::Candidate> = candidates.iter().collect();
     ranked.sort_by(|a, b| (b.pairs.len() * b.support).cmp(&(a.pairs.len() * a.support)));
     ranked.truncate(params.max_candidates);
+    // Phase 1: a profile map per candidate, ranked by quality (region, then distortion), so
+    // the best version of each symmetry is refined first and absorbs its variants.
+    let mut profiled: Vec<(maps::DenseMap, (usize, usize), f64)> = Vec::new();
     for (ci, cand) in ranked.iter().enumerate() {
-        if !progress(0.65 + 0.3 * ci as f64 / ranked.len().max(1) as f64) {
+        if !progress(0.65 + 0.15 * ci as f64 / ranked.len().max(1) as f64) {
+            return Err(cancelled());
+        }
+        let anchors: Vec<(usize, usize)> = cand.pairs.iter().map(|&(a, b)| (probes[a], probes[b])).collect();
+        let Some(dense) = maps::profile_map(&ctx, &anchors, probes, vinfo.eps, &params.maps) else { continue };
+        if characterize::displacement(&dense.map, probes, &emb, vinfo.diameter) < params.min_displacement {
+            continue;
+        }
+        let distortion = characterize::sample_distortion(&dense.map, probes, &emb, vinfo.diameter);
+        profiled.push((dense, anchors[0], distortion));
+    }
+    let score = |m: &maps::DenseMap, distortion: f64| m.region_size as f64 / n as f64 - 10.0 * distortion;
+    profiled.sort_by(|a, b| score(&b.0, b.2).total_cmp(&score(&a.0, a.2)));
+
+    // Two maps are one symmetry when at least `fraction` of the samples both map agree.
+    let same_as = |dense: &maps::DenseMap, found: &[Found], fraction: f64| {
+        found.iter().position(|f| {
+            let both: Vec<usize> = probes.iter().copied().filter(|&v| f.dense.map[v] >= 0 && dense.map[v] >= 0).collect();
+            let same = both.iter().filter(|&&v| emb.dist(f.dense.map[v] as usize, dense.map[v] as usize) <= agree_tol).count();
+            !both.is_empty() && same as f64 >= fraction * both.len() as f64
+        })
+    };
+    // Phase 2: refine (nearly) global maps, keep those that move points and preserve distances.
+    let total = profiled.len().max(1);
+    let mut refinements = 0;
+    for (pi, (mut dense, seed, _)) in profiled.into_iter().enumerate() {
+        if !progress(0.8 + 0.15 * pi as f64 / total as f64) {
             return Err(cancelled());
         }
         if found.len() >= params.max_symmetries {
             break;
         }
-        let anchors: Vec<(usize, usize)> = cand.pairs.iter().map(|&(a, b)| (probes[a], probes[b])).collect();
-        // Skip candidates an accepted map already explains.
-        // (Candidate pairs are only as precise as the sampling: compare within voting's ε.)
-        let explained = found.iter().any(|f| {
-            let ok = anchors.iter().filter(|&&(a, b)| f.dense.map[a] >= 0 && emb.dist(f.dense.map[a] as usize, b) <= vinfo.eps).count();
-            ok * 2 >= anchors.len()
-        });
-        if std::env::var_os("INTRINSYM_DEBUG").is_some() {
-            let fr: Vec<String> = found.iter().map(|f| format!("{}/{}", anchors.iter().filter(|&&(a, b)| f.dense.map[a] >= 0 && emb.dist(f.dense.map[a] as usize, b) <= vinfo.eps).count(), anchors.len())).collect();
-            eprintln!("cand {ci}: explained by found: {fr:?} eps/diam {:.3}", vinfo.eps / vinfo.diameter);
-        }
-        if explained {
+        // Nearly the same as a refined map: refining it again would only reproduce that map.
+        if same_as(&dense, &found, 0.8).is_some_and(|i| found[i].dense.refined) {
             continue;
         }
-        let Some(dense) = maps::extract(&ctx, &anchors, probes, vinfo.eps, &params.maps) else {
-            if std::env::var_os("INTRINSYM_DEBUG").is_some() { eprintln!("cand {ci}: pairs {} support {} -> extraction failed", cand.pairs.len(), cand.support); }
-            continue
-        };
-        let displacement = characterize::displacement(&dense.map, probes, &emb, vinfo.diameter);
-        if std::env::var_os("INTRINSYM_DEBUG").is_some() {
-            let d = characterize::distortion(&dense.anchors, &emb, vinfo.diameter);
-            let mean_mis: f64 = dense.mismatch.iter().sum::<f64>() / n as f64 / vinfo.diameter;
-            eprintln!("cand {ci}: pairs {} support {} votes {} -> region {} anchors {} displacement {displacement:.3} distortion {d:.4} mean-mismatch {mean_mis:.4} seed {:?}", cand.pairs.len(), cand.support, cand.votes, dense.region_size, dense.anchors.len(), anchors[0]);
+        if maps::refinable(&ctx, &dense, &params.maps) {
+            if refinements == params.max_refinements {
+                continue;
+            }
+            refinements += 1;
+            dense = maps::refine(&ctx, &dense, probes, &params.maps);
+            // Refinement can slide a poor candidate into the identity.
+            if characterize::displacement(&dense.map, probes, &emb, vinfo.diameter) < params.min_displacement {
+                continue;
+            }
         }
-        if displacement < params.min_displacement {
-            continue;
-        }
-        let distortion = characterize::distortion(&dense.anchors, &emb, vinfo.diameter);
+        let distortion = characterize::sample_distortion(&dense.map, probes, &emb, vinfo.diameter);
         if distortion > params.max_distortion {
             continue;
         }
-        // The same map as an accepted one (on the samples both map)?
-        let duplicate = found.iter().position(|f| {
-            let both: Vec<usize> = probes.iter().copied().filter(|&v| f.dense.map[v] >= 0 && dense.map[v] >= 0).collect();
-            let same = both.iter().filter(|&&v| emb.dist(f.dense.map[v] as usize, dense.map[v] as usize) <= agree_tol).count();
-            !both.is_empty() && same * 10 >= both.len() * 8
-        });
-        let seed = anchors[0];
-        match duplicate {
-            Some(i) if found[i].dense.region_size >= dense.region_size => {}
-            Some(i) => found[i] = Found { dense, seed, distortion },
-            None => found.push(Found { dense, seed, distortion }),
+        // Of two versions of one symmetry keep, among global maps, the one with the lower
+        // complexity (the more diagonal functional map: an isometry of a shape with a simple
+        // spectrum maps eigenfunctions to ± themselves; on TOSCA the true mirror scores 0.1–0.3,
+        // competing near-symmetries like a human's front↔back flip ≥ 0.9); otherwise the larger
+        // region, then the lower distortion.
+        let complexity = characterize::complexity(&maps::functional_map(&basis, &dense.map, params.maps.fmap_size), params.complexity_width);
+        let candidate = Found { dense, seed, distortion, complexity };
+        let better = |f: &Found| {
+            if f.dense.global && candidate.dense.global {
+                candidate.complexity < f.complexity
+            } else {
+                (candidate.dense.region_size, -candidate.distortion) > (f.dense.region_size, -f.distortion)
+            }
+        };
+        match same_as(&candidate.dense, &found, 0.5) {
+            Some(i) if !better(&found[i]) => {}
+            Some(i) => found[i] = candidate,
+            None => found.push(candidate),
         }
     }
     timings.maps = t.elapsed().as_secs_f64();
@@ -285,7 +314,7 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
         .into_iter()
         .map(|f| {
             let fmap = maps::functional_map(&basis, &f.dense.map, params.maps.fmap_size);
-            let complexity = characterize::complexity(&fmap, params.complexity_width);
+            let complexity = f.complexity;
             let order = characterize::order(&f.dense.map, probes, &emb, order_tol, params.max_order);
             let kind = if f.dense.global { Kind::Global } else { Kind::Partial };
             let to_input = |v: usize| mesh.input_index[v] as usize;

@@ -86,6 +86,17 @@ pub fn distortion(anchors: &[(usize, usize)], emb: &BiharmonicEmbedding, diamete
     }
 }
 
+/// Mean `|d(x,y) − d(Tx,Ty)|` over pairs of probe vertices both in the region, divided by
+/// `diameter`: an unbiased isometry error (anchors were selected for fitting well).
+pub fn sample_distortion(map: &[i64], probes: &[usize], emb: &BiharmonicEmbedding, diameter: f64) -> f64 {
+    let src: Vec<usize> = probes.iter().copied().filter(|&v| map[v] >= 0).collect();
+    if src.len() < 2 {
+        return f64::INFINITY;
+    }
+    let dst: Vec<usize> = src.iter().map(|&v| map[v] as usize).collect();
+    distortion(&src.iter().copied().zip(dst).collect::<Vec<_>>(), emb, diameter)
+}
+
 /// Mean `d(v, T v)` over the mapped probe vertices, divided by `diameter`.
 pub fn displacement(map: &[i64], probes: &[usize], emb: &BiharmonicEmbedding, diameter: f64) -> f64 {
     let moved: Vec<f64> = probes.iter().filter(|&&v| map[v] >= 0).map(|&v| emb.dist(v, map[v] as usize)).collect();

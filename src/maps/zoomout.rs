@@ -15,34 +15,51 @@ use crate::spectral::Eigenbasis;
 /// Refines `map` (every entry ≥ 0) in place over `k0, k0+step, …, k1` eigenfunctions.
 pub fn zoomout(basis: &Eigenbasis, adjacency: &(Vec<usize>, Vec<u32>), map: &mut [usize], k0: usize, k1: usize, step: usize) {
     let n = basis.num_vertices();
-    let k1 = k1.min(basis.k());
-    let mut k = k0.min(k1);
+    let kmax = k1.min(basis.k());
+    let mut k = k0.min(kmax).max(1);
+    // Row-major Φ (one vertex's coefficients contiguous) for the descent, and M Φ for C.
+    let rows: Vec<f64> = {
+        let mut r = vec![0.0; n * kmax];
+        for i in 0..kmax {
+            let col = basis.evecs.col(i);
+            for v in 0..n {
+                r[v * kmax + i] = col[v];
+            }
+        }
+        r
+    };
+    let mut mphi = Mat::<f64>::zeros(n, kmax);
+    for i in 0..kmax {
+        let col = basis.evecs.col(i);
+        for (v, x) in mphi.col_as_slice_mut(i).iter_mut().enumerate() {
+            *x = basis.mass[v] * col[v];
+        }
+    }
+    let phi_t = basis.evecs.as_ref().subcols(0, kmax).transpose();
     loop {
         // C_k = (M Φ_k)ᵀ Φ_k[T].
-        let mphi = Mat::<f64>::from_fn(n, k, |v, i| basis.mass[v] * basis.evecs[(v, i)]);
-        let phit = Mat::<f64>::from_fn(n, k, |v, i| basis.evecs[(map[v], i)]);
-        let mut c = Mat::<f64>::zeros(k, k);
-        faer::linalg::matmul::matmul(c.as_mut(), Accum::Replace, mphi.transpose(), phit.as_ref(), 1.0, Par::Seq);
-        // Targets g_v = Φ_k(v) C_k.
-        let phi = basis.evecs.as_ref().subcols(0, k);
-        let mut g = Mat::<f64>::zeros(n, k);
-        faer::linalg::matmul::matmul(g.as_mut(), Accum::Replace, phi, c.as_ref(), 1.0, Par::Seq);
-        // Row-major copy of Φ_k for cache-friendly distance evaluations.
-        let rows: Vec<f64> = (0..n).flat_map(|v| (0..k).map(move |i| (v, i))).map(|(v, i)| basis.evecs[(v, i)]).collect();
-        let dist = |w: usize, target: &[f64]| -> f64 {
-            rows[w * k..(w + 1) * k].iter().zip(target).map(|(a, b)| (a - b) * (a - b)).sum()
-        };
-        let mut target = vec![0.0; k];
-        for v in 0..n {
-            for (i, t) in target.iter_mut().enumerate() {
-                *t = g[(v, i)];
+        let mut phit = Mat::<f64>::zeros(n, k);
+        for i in 0..k {
+            for (v, x) in phit.col_as_slice_mut(i).iter_mut().enumerate() {
+                *x = rows[map[v] * kmax + i];
             }
+        }
+        let mut c = Mat::<f64>::zeros(k, k);
+        faer::linalg::matmul::matmul(c.as_mut(), Accum::Replace, mphi.as_ref().subcols(0, k).transpose(), phit.as_ref(), 1.0, Par::Seq);
+        // Targets, one column per vertex: gᵀ = Cᵀ Φ_kᵀ.
+        let mut gt = Mat::<f64>::zeros(k, n);
+        faer::linalg::matmul::matmul(gt.as_mut(), Accum::Replace, c.transpose(), phi_t.subrows(0, k), 1.0, Par::Seq);
+        let dist = |w: usize, target: &[f64]| -> f64 {
+            rows[w * kmax..w * kmax + k].iter().zip(target).map(|(a, b)| (a - b) * (a - b)).sum()
+        };
+        for v in 0..n {
+            let target = gt.col_as_slice(v);
             let mut w = map[v];
-            let mut best = dist(w, &target);
+            let mut best = dist(w, target);
             loop {
                 let mut moved = false;
                 for &u in &adjacency.1[adjacency.0[w]..adjacency.0[w + 1]] {
-                    let d = dist(u as usize, &target);
+                    let d = dist(u as usize, target);
                     if d < best {
                         best = d;
                         w = u as usize;
@@ -55,9 +72,9 @@ pub fn zoomout(basis: &Eigenbasis, adjacency: &(Vec<usize>, Vec<u32>), map: &mut
             }
             map[v] = w;
         }
-        if k >= k1 {
+        if k >= kmax {
             break;
         }
-        k = (k + step).min(k1);
+        k = (k + step).min(kmax);
     }
 }

@@ -12,7 +12,7 @@
 //! | NaN or ±inf coordinate | error [`MeshError::NonFinite`] |
 //! | index ≥ number of vertices | error [`MeshError::IndexOutOfRange`] |
 //! | the same vertex twice in one triangle | error [`MeshError::RepeatedIndex`] |
-//! | an edge shared by more than two triangles | error [`MeshError::NonManifoldEdge`] |
+//! | an edge shared by more than two triangles | error [`MeshError::NonManifoldEdge`], unless [`MeshParams::allow_non_manifold`] (then counted) |
 //! | zero-area (collinear or collapsed) triangles | **kept** and counted in [`MeshInfo::degenerate_triangles`]: the Laplacian is built on intrinsically mollified edge lengths (Sharp & Crane 2020), so they get a tiny positive area and finite cotangents; dropping them would punch holes |
 //! | every triangle degenerate (zero total area) | error [`MeshError::Degenerate`] |
 //! | vertices used by no triangle | **ignored** (not part of the computation; results mark them "no image", confidence 0), counted in [`MeshInfo::isolated_vertices`] |
@@ -44,6 +44,11 @@ pub enum ComponentPolicy {
 pub struct MeshParams {
     /// Several connected components: process the largest (default) or reject.
     pub components: ComponentPolicy,
+    /// Accept edges shared by more than two triangles (default: reject). The cotangent
+    /// Laplacian stays well defined (each triangle adds a positive semi-definite element
+    /// matrix), so scans with self-contacts glued into non-manifold edges, like SHREC'16's
+    /// kids, can be processed; the count is reported in [`MeshInfo::non_manifold_edges`].
+    pub allow_non_manifold: bool,
 }
 
 /// Facts found while validating a mesh (warnings, not errors).
@@ -62,6 +67,8 @@ pub struct MeshInfo {
     pub components: usize,
     /// Vertices of the components that were not processed (ignored).
     pub ignored_component_vertices: usize,
+    /// Edges shared by more than two triangles (accepted only with `allow_non_manifold`).
+    pub non_manifold_edges: usize,
 }
 
 /// Why a mesh was refused.
@@ -207,7 +214,11 @@ impl Mesh {
                 return Err(MeshError::RepeatedIndex { triangle: ti });
             }
         }
-        check_edge_manifold(&triangles)?;
+        let non_manifold_edges = match check_edge_manifold(&triangles) {
+            Ok(()) => 0,
+            Err(e) if !params.allow_non_manifold => return Err(e),
+            Err(_) => count_non_manifold_edges(&triangles),
+        };
 
         let areas: Vec<f64> = triangles.iter().map(|t| triangle_area(&vertices, t)).collect();
         let degenerate = triangles
@@ -281,6 +292,7 @@ impl Mesh {
                 isolated_vertices: isolated,
                 components,
                 ignored_component_vertices,
+                non_manifold_edges,
             },
         })
     }
@@ -359,8 +371,7 @@ fn longest_edge_sq(v: &[[f64; 3]], t: &[u32; 3]) -> f64 {
     norm_sq(sub(a, b)).max(norm_sq(sub(b, c))).max(norm_sq(sub(c, a)))
 }
 
-/// Errors on the first edge shared by more than two triangles (reported with input indices).
-fn check_edge_manifold(triangles: &[[u32; 3]]) -> Result<(), MeshError> {
+fn sorted_edge_keys(triangles: &[[u32; 3]]) -> Vec<u64> {
     let mut keys: Vec<u64> = Vec::with_capacity(3 * triangles.len());
     for t in triangles {
         for k in 0..3 {
@@ -370,6 +381,17 @@ fn check_edge_manifold(triangles: &[[u32; 3]]) -> Result<(), MeshError> {
         }
     }
     keys.sort_unstable();
+    keys
+}
+
+fn count_non_manifold_edges(triangles: &[[u32; 3]]) -> usize {
+    let keys = sorted_edge_keys(triangles);
+    keys.chunk_by(|a, b| a == b).filter(|run| run.len() > 2).count()
+}
+
+/// Errors on the first edge shared by more than two triangles (reported with input indices).
+fn check_edge_manifold(triangles: &[[u32; 3]]) -> Result<(), MeshError> {
+    let keys = sorted_edge_keys(triangles);
     let mut i = 0;
     while i < keys.len() {
         let mut j = i + 1;
@@ -484,7 +506,9 @@ mod tests {
         let (mut v, mut t) = tet();
         v.push([1., 1., 1.]);
         t.push([0, 1, 4]); // third triangle on edge (0,1)
-        assert_eq!(err(v, t), MeshError::NonManifoldEdge { a: 0, b: 1, triangles: 3 });
+        assert_eq!(err(v.clone(), t.clone()), MeshError::NonManifoldEdge { a: 0, b: 1, triangles: 3 });
+        let allow = MeshParams { allow_non_manifold: true, ..Default::default() };
+        assert_eq!(Mesh::new(v, t, &allow).unwrap().info.non_manifold_edges, 1);
         // The same triangle twice is non-manifold too.
         let (v, mut t) = tet();
         t.push(t[0]);
@@ -537,7 +561,7 @@ mod tests {
         assert_eq!(m.info.components, 2);
         assert_eq!(m.info.ignored_component_vertices, 4);
         assert_eq!(m.input_index, vec![0, 1, 2, 3]);
-        let reject = MeshParams { components: ComponentPolicy::Reject };
+        let reject = MeshParams { components: ComponentPolicy::Reject, ..Default::default() };
         assert_eq!(Mesh::new(v2, t2, &reject).unwrap_err(), MeshError::Disconnected { components: 2 });
     }
 }

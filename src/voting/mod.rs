@@ -4,9 +4,11 @@
 //! 1. **Good voters** (§4.2): sample pairs whose wave kernel signatures are close,
 //!    `δ_WKS(x, x′) ≤ T_WKS`, with `T_WKS` the `wks_quantile` quantile of all pair distances
 //!    (scale- and resolution-free). `δ_WKS` is the root-mean-square over energies of the relative
-//!    difference `(a_e − b_e)/(a_e + b_e)`. Self-pairs `x → x` are the fixed points of a
-//!    reflection (points on its mirror plane): they may join a candidate but never seed one, so
-//!    the identity is never proposed.
+//!    difference `(a_e − b_e)/(a_e + b_e)`. Self-pairs `x → x` (the fixed points of a reflection,
+//!    on its mirror plane) neither vote nor join candidates: they are consistent with the
+//!    identity, which always fits, and with a sampling-sized ε they flood candidates and pull
+//!    them towards it (seen on TOSCA's cat: 40 of 64 pairs). Samples on a mirror plane get their
+//!    fixed-point images in map extraction instead.
 //! 2. **Votes** (§4.3): a directed pair `x → x′` gets a vote from a good voter `y → y′` (both
 //!    orientations of `{y, y′}` are tried) when `|d(x,y) − d(x′,y′)| < ε`; for involutions the
 //!    paper's second criterion `|d(x,y′) − d(x′,y)| < ε` is also required. `ε = eps · diameter`,
@@ -48,7 +50,7 @@ pub struct VotingParams {
 
 impl Default for VotingParams {
     fn default() -> Self {
-        VotingParams { wks_quantile: 0.2, eps: 0.04, consistency: 0.85, min_pairs: 4, branches: 6 }
+        VotingParams { wks_quantile: 0.2, eps: 0.04, consistency: std::env::var("CONS").ok().and_then(|c| c.parse().ok()).unwrap_or(0.85), min_pairs: 4, branches: 6 }
     }
 }
 
@@ -130,8 +132,10 @@ pub fn vote(
         }
     }
     let good_pairs = pairs.len();
-    pairs.extend((0..ns).map(|i| (i, i)));
     let consistent = |p: (usize, usize), q: (usize, usize)| (dist[(p.0, q.0)] - dist[(p.1, q.1)]).abs() < eps;
+    // The paper's second criterion: for an involution T (T x = x', T y = y'), d(x, y') = d(x', y).
+    let consistent_involution =
+        |p: (usize, usize), q: (usize, usize)| consistent(p, q) && (dist[(p.0, q.1)] - dist[(p.1, q.0)]).abs() < eps;
     // Votes (paper §4.3): both criteria, both orientations of the voter.
     let votes: Vec<usize> = pairs[..good_pairs]
         .iter()
@@ -177,11 +181,22 @@ pub fn vote(
             }
             used_targets.push(q);
             tried += 1;
-            let members = grow(&pairs, vec![p, q], &consistent, params.consistency, ns);
-            if members.len() >= params.min_pairs {
-                let mut sorted = members;
-                sorted.sort();
-                grown.push(Candidate { pairs: sorted, votes: votes[pi], support: 1 });
+            // Grow twice: as an involution (both criteria; mirrors) and as a general isometry
+            // (first criterion; rotations). Identical results are merged below.
+            for involution in [true, false] {
+                let members = if involution {
+                    if !consistent_involution(p, q) {
+                        continue;
+                    }
+                    grow(&pairs, vec![p, q], &consistent_involution, params.consistency, ns)
+                } else {
+                    grow(&pairs, vec![p, q], &consistent, params.consistency, ns)
+                };
+                if members.len() >= params.min_pairs {
+                    let mut sorted = members;
+                    sorted.sort();
+                    grown.push(Candidate { pairs: sorted, votes: votes[pi], support: 1 });
+                }
             }
         }
     }
