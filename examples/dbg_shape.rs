@@ -14,6 +14,7 @@ fn main() {
     if let Ok(v) = std::env::var("ZSTEP") { p.maps.zoomout_step = v.parse().unwrap(); }
     if let Ok(v) = std::env::var("SEARCH") { p.maps.search_vertices = v.parse().unwrap(); }
     if let Ok(v) = std::env::var("REFINE") { p.maps.refine = v.parse().unwrap(); }
+    if let Ok(v) = std::env::var("K0") { p.maps.spectral_start = v.parse().unwrap(); }
     if let Ok(v) = std::env::var("MAXC") { p.max_candidates = v.parse().unwrap(); }
     if let Ok(v) = std::env::var("MAXR") { p.max_refinements = v.parse().unwrap(); }
     let d = detect(&mesh, &p, &mut |_| true).unwrap();

@@ -243,6 +243,9 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
             continue;
         }
         let distortion = characterize::sample_distortion(&dense.map, probes, &emb, vinfo.diameter);
+        if std::env::var_os("INTRINSYM_DEBUG").is_some() {
+            eprintln!("profile {ci}: pairs {} region {} distortion {distortion:.4}", cand.pairs.len(), dense.region_size);
+        }
         profiled.push((dense, anchors[0], distortion));
     }
     let score = |m: &maps::DenseMap, distortion: f64| m.region_size as f64 / n as f64 - 10.0 * distortion;
@@ -282,6 +285,9 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
             }
         }
         let distortion = characterize::sample_distortion(&dense.map, probes, &emb, vinfo.diameter);
+        if std::env::var_os("INTRINSYM_DEBUG").is_some() {
+            eprintln!("phase2 {pi}: region {} refined {} global {} distortion {distortion:.4}", dense.region_size, dense.refined, dense.global);
+        }
         if distortion > params.max_distortion {
             continue;
         }

@@ -1,0 +1,110 @@
+//! A low-frequency functional map fitted to correspondences, as the start of ZoomOut.
+//!
+//! For an intrinsic isometry `T` and eigenfunctions with simple eigenvalues, `φ_i∘T = ±φ_i`
+//! (Ovsjanikov, Sun & Guibas 2008); inside a cluster of (nearly) repeated eigenvalues `T` acts
+//! by an orthogonal block. So the pull-back's functional map in the first `k0` eigenfunctions is
+//! block-diagonal by eigenvalue cluster, `C₀ = diag(B_1, …)`, and each block is the orthogonal
+//! Procrustes solution on the correspondences `a_j → b_j`:
+//! $$B = \arg\min_{B^\top B = I} \sum_j \lVert \Phi_{blk}(b_j) - \Phi_{blk}(a_j)\,B\rVert^2 = UV^\top,\quad U\Sigma V^\top = \Phi_{blk}(A)^\top \Phi_{blk}(B).$$
+//! (A 1 × 1 block is the sign of `Σ_j φ_i(a_j) φ_i(b_j)`.) Correspondences from voting are
+//! partly wrong, so the fit is repeated on the 70% of pairs it explains best. The point map of
+//! `C₀` — nearest neighbour of `Φ_k0(v) C₀` among `Φ_k0(w)`, coarse over a vertex subset then by
+//! descent on the mesh — starts ZoomOut. Low frequencies are the ones a pose changes least,
+//! which makes this start robust on posed shapes where distance profiles are not.
+
+use faer::Mat;
+
+use crate::spectral::Eigenbasis;
+
+/// Relative eigenvalue gap below which eigenpairs form one cluster (block).
+const CLUSTER_GAP: f64 = 0.05;
+
+/// `(k0, k0)` block-diagonal orthogonal `C₀` fitted to `pairs` (vertex indices).
+pub fn fit_blocks(basis: &Eigenbasis, pairs: &[(usize, usize)], k0: usize) -> Mat<f64> {
+    let k0 = k0.min(basis.k());
+    let mut c = Mat::<f64>::zeros(k0, k0);
+    c[(0, 0)] = 1.0; // the constant function maps to itself
+    let mut i = 1;
+    while i < k0 {
+        let mut j = i + 1;
+        while j < k0 && (basis.evals[j] - basis.evals[j - 1]) < CLUSTER_GAP * basis.evals[j] {
+            j += 1;
+        }
+        let d = j - i;
+        // M = Φ_blk(A)ᵀ Φ_blk(B).
+        let m = Mat::<f64>::from_fn(d, d, |r, s| pairs.iter().map(|&(a, b)| basis.evecs[(a, i + r)] * basis.evecs[(b, i + s)]).sum());
+        if d == 1 {
+            c[(i, i)] = if m[(0, 0)] >= 0.0 { 1.0 } else { -1.0 };
+        } else if let Ok(svd) = m.svd() {
+            let r = svd.U() * svd.V().transpose();
+            for p in 0..d {
+                for q in 0..d {
+                    c[(i + p, i + q)] = r[(p, q)];
+                }
+            }
+        } else {
+            for p in 0..d {
+                c[(i + p, i + p)] = 1.0;
+            }
+        }
+        i = j;
+    }
+    c
+}
+
+/// `C₀` fitted twice: on all pairs, then on the 70% with the smallest residual
+/// `‖Φ(b) − Φ(a) C₀‖`.
+pub fn robust_fit(basis: &Eigenbasis, pairs: &[(usize, usize)], k0: usize) -> Mat<f64> {
+    let c = fit_blocks(basis, pairs, k0);
+    let k0 = c.nrows();
+    let mut scored: Vec<(f64, (usize, usize))> = pairs
+        .iter()
+        .map(|&(a, b)| {
+            let mut r = 0.0;
+            for q in 0..k0 {
+                let mut pred = 0.0;
+                for p in 0..k0 {
+                    pred += basis.evecs[(a, p)] * c[(p, q)];
+                }
+                r += (basis.evecs[(b, q)] - pred).powi(2);
+            }
+            (r, (a, b))
+        })
+        .collect();
+    scored.sort_by(|x, y| x.0.total_cmp(&y.0));
+    let keep: Vec<(usize, usize)> = scored[..((0.7 * scored.len() as f64).ceil() as usize).max(1)].iter().map(|x| x.1).collect();
+    fit_blocks(basis, &keep, k0)
+}
+
+/// Point map of `C₀`: for every vertex, the vertex whose `Φ_k0` is nearest to `Φ_k0(v) C₀`.
+pub fn point_map(basis: &Eigenbasis, adjacency: &(Vec<usize>, Vec<u32>), c: &Mat<f64>, search: &[usize]) -> Vec<usize> {
+    let n = basis.num_vertices();
+    let k0 = c.nrows();
+    let rows: Vec<f64> = (0..n).flat_map(|v| (0..k0).map(move |i| (v, i))).map(|(v, i)| basis.evecs[(v, i)]).collect();
+    let dist = |w: usize, t: &[f64]| -> f64 { rows[w * k0..(w + 1) * k0].iter().zip(t).map(|(a, b)| (a - b) * (a - b)).sum() };
+    let mut target = vec![0.0; k0];
+    let mut map = vec![0usize; n];
+    for v in 0..n {
+        for (q, t) in target.iter_mut().enumerate() {
+            *t = (0..k0).map(|p| rows[v * k0 + p] * c[(p, q)]).sum();
+        }
+        let mut w = search.iter().copied().min_by(|&a, &b| dist(a, &target).total_cmp(&dist(b, &target))).unwrap_or(v);
+        let mut best = dist(w, &target);
+        loop {
+            let mut moved = false;
+            for &u in &adjacency.1[adjacency.0[w]..adjacency.0[w + 1]] {
+                let d = dist(u as usize, &target);
+                if d < best {
+                    best = d;
+                    w = u as usize;
+                    moved = true;
+                }
+            }
+            if !moved {
+                break;
+            }
+        }
+        map[v] = w;
+    }
+    map
+}
