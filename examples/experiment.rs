@@ -4,7 +4,8 @@ fn main() {
     let args: Vec<String> = std::env::args().collect();
     let noise: f64 = args.get(1).and_then(|a| a.parse().ok()).unwrap_or(0.0);
     let pose = if args.get(2).map(|s| s == "rest").unwrap_or(false) { Pose::Rest } else { Pose::Walking };
-    let c = shapes::quadruped(5, pose, noise, 3);
+    let level: u32 = std::env::var("LEVEL").ok().and_then(|l| l.parse().ok()).unwrap_or(5);
+    let c = shapes::quadruped(level, pose, noise, 3);
     let mut p = Params::default();
     if let Ok(v) = std::env::var("EPS") { p.voting.eps = v.parse().unwrap(); }
     if let Ok(v) = std::env::var("ACCEPT") { p.maps.accept = v.parse().unwrap(); }

@@ -226,20 +226,25 @@ pub fn refine(ctx: &Context<'_>, m: &DenseMap, samples: &[usize], params: &MapPa
         finish(ctx, anchors, image, params, true)
     };
     let better = |a: &DenseMap, b: &DenseMap| quality(basis, a, params) < quality(basis, b, params);
+    // Two starts, both zoomed out to a middle size; the better one (by `quality`) continues.
+    let mid = (params.zoomout_k / 3).max(params.spectral_start).min(params.zoomout_k);
     let mut image = m.image.clone();
-    zoomout(basis, &ctx.adjacency, &mut image, 10, params.zoomout_k, params.zoomout_step);
-    let mut best = own(image);
-    // A second start: the low-frequency functional map fitted to the anchors (robust where a
+    zoomout(basis, &ctx.adjacency, &mut image, 10, mid, params.zoomout_step);
+    let mut start = own(image);
+    // The second start: the low-frequency functional map fitted to the anchors (robust where a
     // pose distorts distance profiles).
     if params.spectral_start > 0 {
         let c0 = spectral_init::robust_fit(basis, &m.anchors, params.spectral_start);
         let mut image = spectral_init::point_map(basis, &ctx.adjacency, &c0, &ctx.search);
-        zoomout(basis, &ctx.adjacency, &mut image, params.spectral_start, params.zoomout_k, params.zoomout_step);
+        zoomout(basis, &ctx.adjacency, &mut image, params.spectral_start, mid, params.zoomout_step);
         let other = own(image);
-        if better(&other, &best) {
-            best = other;
+        if better(&other, &start) {
+            start = other;
         }
     }
+    let mut image = start.image;
+    zoomout(basis, &ctx.adjacency, &mut image, mid, params.zoomout_k, params.zoomout_step);
+    let mut best = own(image);
     // Second pass: a fresh profile match from the refined map's sample images, refined again.
     let again: Vec<(usize, usize)> = samples.iter().filter(|&&s| best.map[s] >= 0).map(|&s| (s, best.image[s])).collect();
     if let Some((_, mut image)) = profile_images(ctx, &again, samples, params.accept * ctx.diameter * 2.0, params) {

@@ -77,34 +77,66 @@ pub fn robust_fit(basis: &Eigenbasis, pairs: &[(usize, usize)], k0: usize) -> Ma
 }
 
 /// Point map of `C₀`: for every vertex, the vertex whose `Φ_k0` is nearest to `Φ_k0(v) C₀`.
+/// Vertices are visited breadth-first; each starts from the best image among its mapped
+/// neighbours (or, for the first of each component of the visit, a coarse search over
+/// `search`) and descends on the mesh graph.
 pub fn point_map(basis: &Eigenbasis, adjacency: &(Vec<usize>, Vec<u32>), c: &Mat<f64>, search: &[usize]) -> Vec<usize> {
     let n = basis.num_vertices();
     let k0 = c.nrows();
     let rows: Vec<f64> = (0..n).flat_map(|v| (0..k0).map(move |i| (v, i))).map(|(v, i)| basis.evecs[(v, i)]).collect();
     let dist = |w: usize, t: &[f64]| -> f64 { rows[w * k0..(w + 1) * k0].iter().zip(t).map(|(a, b)| (a - b) * (a - b)).sum() };
+    let nbrs = |w: usize| &adjacency.1[adjacency.0[w]..adjacency.0[w + 1]];
     let mut target = vec![0.0; k0];
-    let mut map = vec![0usize; n];
-    for v in 0..n {
-        for (q, t) in target.iter_mut().enumerate() {
-            *t = (0..k0).map(|p| rows[v * k0 + p] * c[(p, q)]).sum();
+    let mut map = vec![usize::MAX; n];
+    let mut queued = vec![false; n];
+    let mut queue = std::collections::VecDeque::new();
+    for root in 0..n {
+        if queued[root] {
+            continue;
         }
-        let mut w = search.iter().copied().min_by(|&a, &b| dist(a, &target).total_cmp(&dist(b, &target))).unwrap_or(v);
-        let mut best = dist(w, &target);
-        loop {
-            let mut moved = false;
-            for &u in &adjacency.1[adjacency.0[w]..adjacency.0[w + 1]] {
-                let d = dist(u as usize, &target);
-                if d < best {
-                    best = d;
-                    w = u as usize;
-                    moved = true;
+        queued[root] = true;
+        queue.push_back(root);
+        while let Some(v) = queue.pop_front() {
+            for (q, t) in target.iter_mut().enumerate() {
+                *t = (0..k0).map(|p| rows[v * k0 + p] * c[(p, q)]).sum();
+            }
+            let mut w = usize::MAX;
+            let mut best = f64::INFINITY;
+            for &u in nbrs(v) {
+                let m = map[u as usize];
+                if m != usize::MAX {
+                    let d = dist(m, &target);
+                    if d < best {
+                        (w, best) = (m, d);
+                    }
                 }
             }
-            if !moved {
-                break;
+            if w == usize::MAX {
+                w = search.iter().copied().min_by(|&a, &b| dist(a, &target).total_cmp(&dist(b, &target))).unwrap_or(v);
+                best = dist(w, &target);
+            }
+            loop {
+                let mut moved = false;
+                for &u in nbrs(w) {
+                    let d = dist(u as usize, &target);
+                    if d < best {
+                        best = d;
+                        w = u as usize;
+                        moved = true;
+                    }
+                }
+                if !moved {
+                    break;
+                }
+            }
+            map[v] = w;
+            for &u in nbrs(v) {
+                if !queued[u as usize] {
+                    queued[u as usize] = true;
+                    queue.push_back(u as usize);
+                }
             }
         }
-        map[v] = w;
     }
     map
 }

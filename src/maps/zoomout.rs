@@ -12,7 +12,8 @@ use faer::{Accum, Mat, Par};
 
 use crate::spectral::Eigenbasis;
 
-/// Refines `map` (every entry ≥ 0) in place over `k0, k0+step, …, k1` eigenfunctions.
+/// Refines `map` (every entry ≥ 0) in place over `k0 < … < k1` eigenfunctions, growing by
+/// `max(step, 15%)` per iteration.
 pub fn zoomout(basis: &Eigenbasis, adjacency: &(Vec<usize>, Vec<u32>), map: &mut [usize], k0: usize, k1: usize, step: usize) {
     let n = basis.num_vertices();
     let kmax = k1.min(basis.k());
@@ -75,6 +76,7 @@ pub fn zoomout(basis: &Eigenbasis, adjacency: &(Vec<usize>, Vec<u32>), map: &mut
         if k >= kmax {
             break;
         }
-        k = (k + step).min(kmax);
+        // Grow by `step` or 15%, whichever is more: the cost per step is O(n·k²).
+        k = (k + step).max(k * 23 / 20).min(kmax);
     }
 }

@@ -50,7 +50,7 @@ pub struct VotingParams {
 
 impl Default for VotingParams {
     fn default() -> Self {
-        VotingParams { wks_quantile: 0.2, eps: 0.04, consistency: std::env::var("CONS").ok().and_then(|c| c.parse().ok()).unwrap_or(0.85), min_pairs: 4, branches: 6 }
+        VotingParams { wks_quantile: 0.2, eps: 0.04, consistency: 0.85, min_pairs: 4, branches: 6 }
     }
 }
 
