@@ -5,11 +5,14 @@ fn main() {
     let noise: f64 = args.get(1).and_then(|a| a.parse().ok()).unwrap_or(0.0);
     let pose = if args.get(2).map(|s| s == "rest").unwrap_or(false) { Pose::Rest } else { Pose::Walking };
     let level: u32 = std::env::var("LEVEL").ok().and_then(|l| l.parse().ok()).unwrap_or(5);
-    let c = shapes::quadruped(level, pose, noise, 3);
+    let seed: u64 = std::env::var("SEED").ok().and_then(|l| l.parse().ok()).unwrap_or(3);
+    let c = shapes::quadruped(level, pose, noise, seed);
     let mut p = Params::default();
     if let Ok(v) = std::env::var("EPS") { p.voting.eps = v.parse().unwrap(); }
     if let Ok(v) = std::env::var("ACCEPT") { p.maps.accept = v.parse().unwrap(); }
     if let Ok(v) = std::env::var("DIST") { p.max_distortion = v.parse().unwrap(); }
+    if let Ok(v) = std::env::var("MAXC") { p.max_candidates = v.parse().unwrap(); }
+    if let Ok(v) = std::env::var("MAXR") { p.max_refinements = v.parse().unwrap(); }
     let d = detect(&c.mesh, &p, &mut |_| true).unwrap();
     let t = &d.timings;
     println!("n={} candidates={} found={} total {:.2}s (spectral {:.2} wks {:.2} dist {:.2} sampling {:.2} voting {:.2} maps {:.2} char {:.2})", c.mesh.num_vertices(), d.candidates, d.symmetries.len(), t.total, t.spectral, t.descriptors, t.distance, t.sampling, t.voting, t.maps, t.characterize);

@@ -1,7 +1,8 @@
 //! The whole pipeline: mesh → eigenbasis → WKS + biharmonic distance → samples → voting →
 //! dense maps → characterization → groups, as one call ([`detect`]) returning a [`Detection`].
 //!
-//! Symmetries are reported strongest first (largest region, then lowest distortion). A
+//! Symmetries are reported strongest first (global ones by increasing complexity, then partial
+//! ones by decreasing region). A
 //! candidate's map is kept when it moves points (displacement ≥ `min_displacement`, so the
 //! identity, which always fits the descriptors, is rejected), preserves distances (distortion ≤
 //! `max_distortion`), and is not the same map as a stronger one (agreement on ≥ 80% of the
@@ -309,7 +310,17 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
     timings.maps = t.elapsed().as_secs_f64();
 
     let t = Instant::now();
-    found.sort_by(|a, b| b.dense.region_size.cmp(&a.dense.region_size).then(a.distortion.total_cmp(&b.distortion)));
+    // Strongest first: global maps by complexity (the most isometric first), then partial
+    // maps by region size and distortion.
+    found.sort_by(|a, b| {
+        b.dense.global.cmp(&a.dense.global).then_with(|| {
+            if a.dense.global {
+                a.complexity.total_cmp(&b.complexity)
+            } else {
+                b.dense.region_size.cmp(&a.dense.region_size).then(a.distortion.total_cmp(&b.distortion))
+            }
+        })
+    });
     let order_tol = params.maps.accept * 2.0 * vinfo.diameter;
     let mut symmetries: Vec<Symmetry> = found
         .into_iter()

@@ -14,9 +14,12 @@
 //!              sampling ─▶ voting ─▶ maps ─▶ characterize ─▶ cluster ─▶ Result
 //! ```
 //!
-//! Modules exist as their stages are implemented: [`mesh`] (validation and file input) and
-//! [`spectral`] (cotangent Laplacian, lumped mass, shift-invert block Lanczos) so far;
-//! [`shapes`] generates test and benchmark meshes.
+//! One module per stage: [`mesh`] (validation, file input), [`spectral`] (cotangent
+//! Laplacian, lumped mass, shift-invert block Lanczos), [`descriptors`] (WKS), [`distance`]
+//! (biharmonic), [`sampling`] (farthest points), [`voting`] (correspondence space voting),
+//! [`maps`] (dense maps, ZoomOut), [`characterize`] (complexity, order), [`cluster`] (groups);
+//! [`detect`] runs them all. [`output`] writes JSON, PLY and reports, [`eval`] scores maps
+//! against ground truth, and [`shapes`] generates test shapes with known symmetry.
 
 #![warn(missing_docs)]
 
@@ -29,6 +32,7 @@ pub mod error;
 pub mod eval;
 pub mod maps;
 pub mod mesh;
+pub mod output;
 pub mod sampling;
 pub mod shapes;
 pub mod spectral;

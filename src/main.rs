@@ -1,6 +1,7 @@
 //! `intrinsym`: the command-line front end.
 //!
 //! ```text
+//! intrinsym detect INPUT [--json OUT.json] [--ply OUT.ply] [--report OUT.svg|.html] [params…]
 //! intrinsym spectrum INPUT [-k 100] [--json]   Laplace–Beltrami eigenvalues, timing, checks
 //! intrinsym generate SHAPE OUTPUT.off [--size S] generated test shapes
 //! ```
@@ -11,7 +12,7 @@ use std::time::Instant;
 
 use clap::{Parser, Subcommand, ValueEnum};
 use intrinsym::mesh::{read_mesh, write_off, ComponentPolicy};
-use intrinsym::{shapes, Eigenbasis, EigenParams, Mesh, MeshParams};
+use intrinsym::{detect, shapes, Eigenbasis, EigenParams, Mesh, MeshParams, Params};
 
 #[derive(Parser)]
 #[command(name = "intrinsym", version, about = "Detect and characterize intrinsic symmetries of triangle meshes")]
@@ -22,6 +23,48 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
+    /// Detect the intrinsic symmetries of a mesh (OFF, PLY or OBJ).
+    Detect {
+        /// Input mesh.
+        input: PathBuf,
+        /// Write the full result (maps, confidences, functional maps) as JSON.
+        #[arg(long)]
+        json: Option<PathBuf>,
+        /// Write the mesh as PLY with per-vertex colour (a vertex and its image under the
+        /// strongest symmetry share a colour) and quality (symmetry confidence).
+        #[arg(long)]
+        ply: Option<PathBuf>,
+        /// Write a picture of the symmetry space and of each functional map (.svg or .html).
+        #[arg(long)]
+        report: Option<PathBuf>,
+        /// Eigenpairs of the Laplace–Beltrami operator.
+        #[arg(short, long, default_value_t = 100)]
+        k: usize,
+        /// Farthest-point samples (the paper uses 20–100).
+        #[arg(long, default_value_t = 64)]
+        samples: usize,
+        /// Random seed (first sample, eigensolver start).
+        #[arg(long, default_value_t = 0)]
+        seed: u64,
+        /// Good voters: WKS distance below this quantile of all sample pairs.
+        #[arg(long, default_value_t = 0.2)]
+        wks_quantile: f64,
+        /// Voting tolerance ε, fraction of the biharmonic diameter.
+        #[arg(long, default_value_t = 0.04)]
+        eps: f64,
+        /// Region tolerance: mean distance mismatch as a fraction of the diameter.
+        #[arg(long, default_value_t = 0.03)]
+        accept: f64,
+        /// Number of symmetry groups (default: automatic).
+        #[arg(long)]
+        groups: Option<usize>,
+        /// Accept edges shared by more than two triangles.
+        #[arg(long)]
+        allow_non_manifold: bool,
+        /// Refuse meshes with several connected components instead of using the largest.
+        #[arg(long)]
+        reject_disconnected: bool,
+    },
     /// Compute the k lowest Laplace–Beltrami eigenpairs of a mesh (OFF, PLY or OBJ).
     Spectrum {
         /// Input mesh.
@@ -53,6 +96,10 @@ enum Shape {
     Icosphere,
     Torus,
     NeedleSphere,
+    /// A posed four-legged animal (icosphere level `size`, e.g. 4 or 5).
+    Quadruped,
+    /// A flat five-armed star (icosphere level `size`).
+    Star,
 }
 
 fn main() -> ExitCode {
@@ -67,6 +114,114 @@ fn main() -> ExitCode {
 
 fn run(cli: Cli) -> Result<(), intrinsym::Error> {
     match cli.command {
+        Command::Detect {
+            input,
+            json,
+            ply,
+            report,
+            k,
+            samples,
+            seed,
+            wks_quantile,
+            eps,
+            accept,
+            groups,
+            allow_non_manifold,
+            reject_disconnected,
+        } => {
+            let raw = read_mesh(&input)?;
+            let mut mp = MeshParams::default();
+            mp.allow_non_manifold = allow_non_manifold;
+            if reject_disconnected {
+                mp.components = ComponentPolicy::Reject;
+            }
+            let mesh = Mesh::new(raw.vertices.clone(), raw.triangles.clone(), &mp)?;
+            let mut params = Params::default();
+            params.eigen.k = k;
+            params.samples = samples;
+            params.seed = seed;
+            params.voting.wks_quantile = wks_quantile;
+            params.voting.eps = eps;
+            params.maps.accept = accept;
+            params.groups = groups;
+            // A progress bar on stderr, hidden when stderr is not a terminal.
+            let bar = indicatif::ProgressBar::with_draw_target(Some(1000), indicatif::ProgressDrawTarget::stderr());
+            bar.set_style(
+                indicatif::ProgressStyle::with_template("{spinner} {msg} [{bar:40}] {percent:>3}% {elapsed}")
+                    .expect("valid template")
+                    .progress_chars("=> "),
+            );
+            bar.set_message("detecting symmetries");
+            let det = detect(&mesh, &params, &mut |f| {
+                bar.set_position((f * 1000.0) as u64);
+                true
+            })?;
+            bar.finish_and_clear();
+            let info = &mesh.info;
+            println!("{}: {} vertices, {} triangles", input.display(), info.input_vertices, info.input_triangles);
+            if info.isolated_vertices + info.ignored_component_vertices + info.degenerate_triangles + info.non_manifold_edges > 0 {
+                println!(
+                    "  note: {} isolated vertices and {} vertices of {} other components ignored; {} zero-area triangles kept; {} non-manifold edges",
+                    info.isolated_vertices,
+                    info.ignored_component_vertices,
+                    info.components.saturating_sub(1),
+                    info.degenerate_triangles,
+                    info.non_manifold_edges
+                );
+            }
+            let t = &det.timings;
+            println!(
+                "  {} symmetries in {:.2} s (spectral {:.2}, descriptors {:.2}, sampling {:.2}, voting {:.2}, maps {:.2}, characterize {:.2})",
+                det.symmetries.len(),
+                t.total,
+                t.spectral,
+                t.descriptors + t.distance,
+                t.sampling,
+                t.voting,
+                t.maps,
+                t.characterize + t.cluster
+            );
+            for (i, s) in det.symmetries.iter().enumerate() {
+                let order = match s.order {
+                    0 => "order ?".to_string(),
+                    2 => "reflection-like (order 2)".to_string(),
+                    o => format!("order {o}"),
+                };
+                println!(
+                    "  #{i}: {:<7} group {}  {order:<26} region {:>6} vertices  complexity {:.3}  distortion {:.4}  seed {} -> {}",
+                    s.kind.as_str(),
+                    s.group,
+                    s.region_size,
+                    s.complexity,
+                    s.distortion,
+                    s.source,
+                    s.target
+                );
+            }
+            if let Some(path) = json {
+                let value = intrinsym::output::json::to_json(&det, &params);
+                let text = serde_json::to_string(&value).expect("JSON of plain numbers");
+                std::fs::write(&path, text).map_err(|source| intrinsym::mesh::IoError::Os { path: path.clone(), source })?;
+                println!("  wrote {}", path.display());
+            }
+            if let Some(path) = ply {
+                let empty = vec![-1i64; det.vertices];
+                let map = det.symmetries.first().map_or(&empty, |s| &s.map);
+                let colours = intrinsym::output::ply::correspondence_colours(&raw.vertices, map);
+                intrinsym::output::ply::write_ply(&path, &raw, &colours, &det.vertex_symmetry())?;
+                println!("  wrote {}", path.display());
+            }
+            if let Some(path) = report {
+                let title = format!("intrinsym: {}", input.display());
+                let text = if path.extension().is_some_and(|e| e == "html" || e == "htm") {
+                    intrinsym::output::report::html(&det, &title)
+                } else {
+                    intrinsym::output::report::svg(&det, &title)
+                };
+                std::fs::write(&path, text).map_err(|source| intrinsym::mesh::IoError::Os { path: path.clone(), source })?;
+                println!("  wrote {}", path.display());
+            }
+        }
         Command::Spectrum { input, k, reject_disconnected, json } => {
             let t = Instant::now();
             let raw = read_mesh(&input)?;
@@ -132,6 +287,8 @@ fn run(cli: Cli) -> Result<(), intrinsym::Error> {
                 Shape::Icosphere => shapes::icosphere(size as u32),
                 Shape::Torus => shapes::bumpy_torus(size),
                 Shape::NeedleSphere => shapes::needle_sphere(size as u32),
+                Shape::Quadruped => shapes::quadruped(size as u32, shapes::Pose::Walking, 0.0, 0).mesh,
+                Shape::Star => shapes::star(5, size as u32).mesh,
             };
             write_off(&output, &mesh.vertices, &mesh.triangles)?;
             println!("wrote {} ({} vertices)", output.display(), mesh.num_vertices());

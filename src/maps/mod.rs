@@ -226,6 +226,14 @@ pub fn refine(ctx: &Context<'_>, m: &DenseMap, samples: &[usize], params: &MapPa
         finish(ctx, anchors, image, params, true)
     };
     let better = |a: &DenseMap, b: &DenseMap| quality(basis, a, params) < quality(basis, b, params);
+    // Refinement must improve the candidate's map, not replace it by another symmetry (seen on
+    // the noisy quadruped: a start drifting from left–right to front–back): a result must agree
+    // with the profile map on at least half of the samples.
+    let agree_tol = 2.0 * params.accept * ctx.diameter;
+    let stays = |r: &DenseMap| {
+        let same = samples.iter().filter(|&&s| ctx.emb.dist(m.image[s], r.image[s]) <= agree_tol).count();
+        2 * same >= samples.len()
+    };
     // Two starts, both zoomed out to a middle size; the better one (by `quality`) continues.
     let mid = (params.zoomout_k / 3).max(params.spectral_start).min(params.zoomout_k);
     let mut image = m.image.clone();
@@ -238,19 +246,25 @@ pub fn refine(ctx: &Context<'_>, m: &DenseMap, samples: &[usize], params: &MapPa
         let mut image = spectral_init::point_map(basis, &ctx.adjacency, &c0, &ctx.search);
         zoomout(basis, &ctx.adjacency, &mut image, params.spectral_start, mid, params.zoomout_step);
         let other = own(image);
-        if better(&other, &start) {
+        if stays(&other) && (better(&other, &start) || !stays(&start)) {
             start = other;
         }
+    }
+    if !stays(&start) {
+        return m.clone();
     }
     let mut image = start.image;
     zoomout(basis, &ctx.adjacency, &mut image, mid, params.zoomout_k, params.zoomout_step);
     let mut best = own(image);
+    if !stays(&best) {
+        return m.clone();
+    }
     // Second pass: a fresh profile match from the refined map's sample images, refined again.
     let again: Vec<(usize, usize)> = samples.iter().filter(|&&s| best.map[s] >= 0).map(|&s| (s, best.image[s])).collect();
     if let Some((_, mut image)) = profile_images(ctx, &again, samples, params.accept * ctx.diameter * 2.0, params) {
         zoomout(basis, &ctx.adjacency, &mut image, 10, params.zoomout_k, params.zoomout_step);
         let second = own(image);
-        if better(&second, &best) {
+        if stays(&second) && better(&second, &best) {
             best = second;
         }
     }

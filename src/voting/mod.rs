@@ -251,7 +251,7 @@ fn grow(
     members
 }
 
-/// Merges candidates that are the same symmetry: on the sources both map, at least 70% of
+/// Merges candidates that are the same symmetry: on the sources both map, at least half of
 /// the targets lie within `eps` of each other (or, with no distances, are equal). The larger
 /// candidate (then the better voted) is kept and counts the other's support.
 fn merge(mut grown: Vec<Candidate>, dist: Option<&Mat<f64>>, eps: f64) -> Vec<Candidate> {
@@ -273,7 +273,7 @@ fn merge(mut grown: Vec<Candidate>, dist: Option<&Mat<f64>>, eps: f64) -> Vec<Ca
                     }
                 }
             }
-            if shared * 2 >= c.pairs.len() && agree * 10 >= shared * 7 {
+            if shared * 2 >= c.pairs.len() && agree * 2 >= shared {
                 o.support += c.support;
                 continue 'next;
             }

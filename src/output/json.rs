@@ -1,0 +1,72 @@
+//! The JSON report. Schema (documented in the README):
+//!
+//! ```text
+//! { "vertices": n, "faces": m,
+//!   "params": { "eigenpairs", "samples", "seed", "wks_quantile", "eps", "accept", "groups" },
+//!   "timings": { "spectral", "descriptors", "distance", "sampling", "voting", "maps",
+//!                "characterize", "cluster", "total" },           // seconds
+//!   "symmetries": [ { "id", "kind": "global"|"partial", "group", "order", "complexity",
+//!                     "distortion", "source", "target", "support_pairs": [[a, b], …],
+//!                     "region_size", "map": [n ints, −1 outside], "confidence": [n floats],
+//!                     "fmap": [k_f² floats, row-major], "fmap_size": k_f } ] }
+//! ```
+//! Vertex indices are those of the input file.
+
+use serde_json::{json, Value};
+
+use crate::detect::{Detection, Params};
+
+/// The report as a JSON value.
+pub fn to_json(det: &Detection, params: &Params) -> Value {
+    let t = &det.timings;
+    let symmetries: Vec<Value> = det
+        .symmetries
+        .iter()
+        .enumerate()
+        .map(|(id, s)| {
+            let k = s.fmap.nrows();
+            let fmap: Vec<f64> = (0..k).flat_map(|i| (0..k).map(move |j| (i, j))).map(|(i, j)| s.fmap[(i, j)]).collect();
+            json!({
+                "id": id,
+                "kind": s.kind.as_str(),
+                "group": s.group,
+                "order": s.order,
+                "complexity": s.complexity,
+                "distortion": s.distortion,
+                "source": s.source,
+                "target": s.target,
+                "support_pairs": s.support_pairs.iter().map(|&(a, b)| [a, b]).collect::<Vec<_>>(),
+                "region_size": s.region_size,
+                "map": s.map,
+                "confidence": s.confidence,
+                "fmap": fmap,
+                "fmap_size": k,
+            })
+        })
+        .collect();
+    json!({
+        "vertices": det.vertices,
+        "faces": det.faces,
+        "params": {
+            "eigenpairs": params.eigen.k,
+            "samples": params.samples,
+            "seed": params.seed,
+            "wks_quantile": params.voting.wks_quantile,
+            "eps": params.voting.eps,
+            "accept": params.maps.accept,
+            "groups": params.groups,
+        },
+        "timings": {
+            "spectral": t.spectral,
+            "descriptors": t.descriptors,
+            "distance": t.distance,
+            "sampling": t.sampling,
+            "voting": t.voting,
+            "maps": t.maps,
+            "characterize": t.characterize,
+            "cluster": t.cluster,
+            "total": t.total,
+        },
+        "symmetries": symmetries,
+    })
+}

@@ -1,0 +1,157 @@
+//! End-to-end detection on generated shapes with known symmetry.
+//!
+//! Quadrupeds are built at icosphere level 4 (2,562 vertices) to keep the suite fast; the
+//! evaluation binary (`intrinsym-eval --generated`) reports the 10k-vertex versions. Thresholds
+//! sit a few points under the measured values (posed 95.4%, 0.2% noise 95.4%, 0.5% noise
+//! 96.6%, rest 100% at acc@0.05) so that they catch regressions without flaking.
+
+use intrinsym::shapes::{self, Pose};
+use intrinsym::spectral::SpectralError;
+use intrinsym::{detect, eval, Error, Kind, Mesh, MeshParams, Params};
+
+fn mirror_truth(c: &shapes::Creature) -> Vec<(usize, Vec<usize>)> {
+    (0..c.mesh.num_vertices()).map(|v| (v, vec![c.mirror[v] as usize])).collect()
+}
+
+fn run(c: &shapes::Creature) -> intrinsym::Detection {
+    detect(&c.mesh, &Params::default(), &mut |_| true).unwrap()
+}
+
+/// acc@(0.05, 0.10) of the strongest symmetry against the left–right mirror.
+fn strongest_mirror_accuracy(c: &shapes::Creature) -> (intrinsym::Detection, Vec<f64>) {
+    let d = run(c);
+    assert!(!d.symmetries.is_empty(), "no symmetry found");
+    let acc = eval::accuracy(&c.mesh, &d.symmetries[0].map, &mirror_truth(c), &[0.05, 0.10]);
+    (d, acc)
+}
+
+#[test]
+fn rest_quadruped_mirror_is_exact() {
+    let c = shapes::quadruped(4, Pose::Rest, 0.0, 0);
+    let (d, acc) = strongest_mirror_accuracy(&c);
+    assert!(acc[0] >= 0.98, "acc@0.05 {acc:?}");
+    let s = &d.symmetries[0];
+    assert_eq!(s.kind, Kind::Global);
+    assert_eq!(s.order, 2);
+    assert!(s.complexity < 0.5, "an exact isometry has a near-diagonal C: {}", s.complexity);
+}
+
+#[test]
+fn posed_quadruped_mirror() {
+    let c = shapes::quadruped(4, Pose::Walking, 0.0, 0);
+    let (d, acc) = strongest_mirror_accuracy(&c);
+    assert!(acc[0] >= 0.90, "acc@0.05 {acc:?}");
+    let s = &d.symmetries[0];
+    assert_eq!(s.kind, Kind::Global);
+    assert_eq!(s.order, 2, "a mirror is an involution");
+    // Every vertex mapped, to a valid vertex; confidences in [0, 1].
+    assert!(s.map.iter().all(|&t| t >= 0 && (t as usize) < c.mesh.num_vertices()));
+    assert!(s.confidence.iter().all(|x| (0.0..=1.0).contains(x)));
+    assert_eq!(s.fmap.nrows(), Params::default().maps.fmap_size);
+    // T∘T ≈ id: most vertices come back within 0.05·√area.
+    let back: Vec<i64> = (0..s.map.len()).map(|v| s.map[s.map[v] as usize]).collect();
+    let identity: Vec<(usize, Vec<usize>)> = (0..s.map.len()).map(|v| (v, vec![v])).collect();
+    let round_trip = eval::accuracy(&c.mesh, &back, &identity, &[0.05])[0];
+    assert!(round_trip >= 0.9, "T∘T within 0.05√A for {round_trip}");
+    // The left–right leg maps are found (each ordered pair by the mirror); measured 0.72–1.0
+    // at acc@0.1 (the 0.8 is met by three of the four: a bent hind leg is the worst).
+    for (i, j) in [(0, 1), (1, 0), (2, 3), (3, 2)] {
+        let best = d.symmetries.iter().map(|s| eval::accuracy(&c.mesh, &s.map, &c.limb_truth(i, j), &[0.1])[0]).fold(0.0, f64::max);
+        assert!(best >= 0.65, "leg {i} -> leg {j}: {best}");
+    }
+}
+
+#[test]
+fn posed_quadruped_with_noise() {
+    // Noise of 0.2% and 0.5% of the bounding-box diagonal, seven noise seeds each. Measured:
+    // the mirror is reported with acc@0.05 of 0.93–0.98 in 5 of 7 (0.2%) and 7 of 7 (0.5%)
+    // seeds; in the others this generator's strong front↔back near-symmetry (legs placed
+    // symmetrically front and back) out-votes it. The test demands 4 of 7 at ≥ 0.88.
+    for noise in [0.002, 0.005] {
+        let mut hits = Vec::new();
+        for seed in 0..7 {
+            let c = shapes::quadruped(4, Pose::Walking, noise, seed);
+            let d = run(&c);
+            let best = d.symmetries.iter().map(|s| eval::accuracy(&c.mesh, &s.map, &mirror_truth(&c), &[0.05])[0]).fold(0.0, f64::max);
+            hits.push(best);
+        }
+        let good = hits.iter().filter(|&&a| a >= 0.88).count();
+        assert!(good >= 4, "noise {noise}: acc@0.05 per seed {hits:?}");
+    }
+}
+
+#[test]
+fn deterministic_and_scale_invariant() {
+    let c = shapes::quadruped(4, Pose::Walking, 0.0, 0);
+    let a = run(&c);
+    let b = run(&c);
+    assert_eq!(a.symmetries.len(), b.symmetries.len());
+    for (x, y) in a.symmetries.iter().zip(&b.symmetries) {
+        assert_eq!(x.map, y.map);
+        assert_eq!(x.complexity, y.complexity);
+    }
+    // Scaled by 7.5: thresholds are relative, so the strongest map barely changes.
+    let scaled: Vec<[f64; 3]> = c.mesh.vertices.iter().map(|p| p.map(|x| 7.5 * x)).collect();
+    let mesh = Mesh::new(scaled, c.mesh.triangles.clone(), &MeshParams::default()).unwrap();
+    let s = detect(&mesh, &Params::default(), &mut |_| true).unwrap();
+    let acc = eval::accuracy(&mesh, &s.symmetries[0].map, &mirror_truth(&c), &[0.05])[0];
+    assert!(acc >= 0.9, "scaled: {acc}");
+}
+
+#[test]
+fn results_use_input_indices() {
+    // An isolated vertex first and a small second component last: both ignored, and every map
+    // entry refers to input indices (the isolated vertex maps to −1).
+    let c = shapes::quadruped(4, Pose::Rest, 0.0, 0);
+    let n = c.mesh.num_vertices() as u32;
+    let mut v = vec![[50.0, 50.0, 50.0]];
+    v.extend(c.mesh.vertices.iter().copied());
+    v.extend([[90.0, 0.0, 0.0], [91.0, 0.0, 0.0], [90.0, 1.0, 0.0], [90.0, 0.0, 1.0]]);
+    let mut t: Vec<[u32; 3]> = c.mesh.triangles.iter().map(|f| f.map(|i| i + 1)).collect();
+    let o = n + 1;
+    t.extend([[o, o + 2, o + 1], [o, o + 1, o + 3], [o + 1, o + 2, o + 3], [o, o + 3, o + 2]]);
+    let mesh = Mesh::new(v, t, &MeshParams::default()).unwrap();
+    assert_eq!(mesh.info.isolated_vertices, 1);
+    assert_eq!(mesh.info.ignored_component_vertices, 4);
+    let d = detect(&mesh, &Params::default(), &mut |_| true).unwrap();
+    assert_eq!(d.vertices, n as usize + 5);
+    let s = &d.symmetries[0];
+    assert_eq!(s.map.len(), n as usize + 5);
+    assert_eq!(s.map[0], -1);
+    assert!(s.map[n as usize + 1..].iter().all(|&x| x == -1));
+    // In input indices the map is the mirror shifted by one (the isolated vertex came first).
+    let exact = (0..n as usize).filter(|&x| s.map[x + 1] == c.mirror[x] as i64 + 1).count();
+    assert!(exact as f64 >= 0.98 * n as f64, "{exact} of {n} exact mirror images");
+}
+
+#[test]
+fn cancel_stops_with_an_error() {
+    let c = shapes::quadruped(4, Pose::Rest, 0.0, 0);
+    let mut calls = 0;
+    let e = detect(&c.mesh, &Params::default(), &mut |f| {
+        calls += 1;
+        f < 0.3
+    })
+    .unwrap_err();
+    assert!(matches!(e, Error::Spectral(SpectralError::Cancelled)), "{e}");
+    assert!(calls > 1);
+}
+
+#[test]
+fn json_report_has_the_documented_schema() {
+    let c = shapes::quadruped(4, Pose::Rest, 0.0, 0);
+    let params = Params::default();
+    let d = detect(&c.mesh, &params, &mut |_| true).unwrap();
+    let j = intrinsym::output::json::to_json(&d, &params);
+    assert_eq!(j["vertices"], c.mesh.num_vertices());
+    assert!(j["timings"]["total"].as_f64().unwrap() > 0.0);
+    let s = &j["symmetries"][0];
+    for key in ["id", "kind", "group", "complexity", "distortion", "source", "target", "support_pairs", "region_size", "map", "confidence", "fmap", "fmap_size", "order"] {
+        assert!(!s[key].is_null(), "missing {key}");
+    }
+    let k = s["fmap_size"].as_u64().unwrap() as usize;
+    assert_eq!(s["fmap"].as_array().unwrap().len(), k * k);
+    assert_eq!(s["map"].as_array().unwrap().len(), c.mesh.num_vertices());
+    let svg = intrinsym::output::report::svg(&d, "test");
+    assert!(svg.starts_with("<svg") && svg.contains("symmetry space"));
+}
