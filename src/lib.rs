@@ -30,6 +30,7 @@ pub mod detect;
 pub mod distance;
 pub mod error;
 pub mod eval;
+pub mod ffi;
 pub mod maps;
 pub mod mesh;
 pub mod output;

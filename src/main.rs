@@ -98,6 +98,8 @@ enum Shape {
     NeedleSphere,
     /// A posed four-legged animal (icosphere level `size`, e.g. 4 or 5).
     Quadruped,
+    /// The same animal in its mirror-symmetric rest pose (x → −x is an exact symmetry).
+    QuadrupedRest,
     /// A flat five-armed star (icosphere level `size`).
     Star,
 }
@@ -288,6 +290,7 @@ fn run(cli: Cli) -> Result<(), intrinsym::Error> {
                 Shape::Torus => shapes::bumpy_torus(size),
                 Shape::NeedleSphere => shapes::needle_sphere(size as u32),
                 Shape::Quadruped => shapes::quadruped(size as u32, shapes::Pose::Walking, 0.0, 0).mesh,
+                Shape::QuadrupedRest => shapes::quadruped(size as u32, shapes::Pose::Rest, 0.0, 0).mesh,
                 Shape::Star => shapes::star(5, size as u32).mesh,
             };
             write_off(&output, &mesh.vertices, &mesh.triangles)?;

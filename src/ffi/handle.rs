@@ -1,0 +1,411 @@
+//! Opaque handles and the entry points.
+//!
+//! Live handles are registered in a process-wide set: a pointer that this library did not hand
+//! out (or already freed) is refused with `SYM_STATUS_INVALID_ARGUMENT` instead of being
+//! dereferenced, and a second `sym_free`/`sym_params_free` of the same pointer is a no-op.
+
+use std::collections::HashSet;
+use std::ffi::{c_char, c_int, c_void};
+use std::sync::{Mutex, OnceLock};
+
+use super::boundary::{guard, guard_value, last_error, set_error};
+use super::status::{from_error, from_mesh_error, sym_status};
+use crate::detect::{detect, Detection, Kind, Params};
+use crate::mesh::{ComponentPolicy, Mesh, MeshParams};
+
+/// Detection parameters (opaque). Create with [`sym_params_new`], free with [`sym_params_free`].
+pub struct sym_params {
+    params: Params,
+    mesh: MeshParams,
+}
+
+/// A detection result (opaque). Produced by [`sym_detect`], freed by [`sym_free`].
+pub struct sym_result {
+    det: Detection,
+    /// Per symmetry: row-major functional map and flattened support pairs.
+    fmaps: Vec<Vec<f64>>,
+    pairs: Vec<Vec<i64>>,
+    quality: Vec<f64>,
+}
+
+/// Whether a symmetry covers the whole surface.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum sym_kind {
+    /// Defined on every vertex.
+    SYM_KIND_GLOBAL = 0,
+    /// Defined on a region (`map[v] == -1` outside it).
+    SYM_KIND_PARTIAL = 1,
+}
+
+/// One symmetry, as borrowed views into a [`sym_result`] (valid until [`sym_free`]).
+///
+/// Set `struct_size = sizeof(sym_symmetry)` before calling [`sym_get_map`]: later versions may
+/// append fields, and the library writes only the fields that fit.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct sym_symmetry {
+    /// Size of this struct as the caller knows it.
+    pub struct_size: usize,
+    /// Seed correspondence: source vertex (input index).
+    pub source: i64,
+    /// Seed correspondence: target vertex.
+    pub target: i64,
+    /// Global or partial.
+    pub kind: sym_kind,
+    /// 2 for a reflection-like involution, n for a rotation of order n, 0 if undetermined.
+    pub order: u32,
+    /// Group label.
+    pub group: u32,
+    /// Vertices in the region.
+    pub region_size: usize,
+    /// `Σ W|C| / ‖C‖_F`: 0 for a perfect isometry, larger for more complex maps.
+    pub complexity: f64,
+    /// Mean `|d(x,y) − d(Tx,Ty)|` over sample pairs / biharmonic diameter.
+    pub distortion: f64,
+    /// Length of `map` and `confidence` (the input vertex count).
+    pub num_vertices: usize,
+    /// `map[v]` = image of vertex v, or -1 outside the region.
+    pub map: *const i64,
+    /// Per-vertex confidence in [0, 1].
+    pub confidence: *const f64,
+    /// Size k_f of the functional map.
+    pub fmap_size: usize,
+    /// Functional map, k_f × k_f, row-major.
+    pub fmap: *const f64,
+    /// Number of support correspondences.
+    pub num_support_pairs: usize,
+    /// Support correspondences as (source, target) pairs: 2 × num_support_pairs values.
+    pub support_pairs: *const i64,
+}
+
+/// Progress callback: `fraction` in [0, 1]; return 0 to cancel, nonzero to continue.
+pub type sym_progress_fn = Option<unsafe extern "C" fn(fraction: f32, user_data: *mut c_void) -> c_int>;
+
+fn registry() -> &'static Mutex<HashSet<usize>> {
+    static LIVE: OnceLock<Mutex<HashSet<usize>>> = OnceLock::new();
+    LIVE.get_or_init(|| Mutex::new(HashSet::new()))
+}
+
+fn register(p: usize) {
+    registry().lock().unwrap_or_else(|e| e.into_inner()).insert(p);
+}
+
+fn is_live(p: usize) -> bool {
+    registry().lock().unwrap_or_else(|e| e.into_inner()).contains(&p)
+}
+
+fn unregister(p: usize) -> bool {
+    registry().lock().unwrap_or_else(|e| e.into_inner()).remove(&p)
+}
+
+type Fail = (sym_status, String);
+
+fn null(name: &str) -> Fail {
+    (sym_status::SYM_STATUS_NULL_PARAMETER, format!("{name} is NULL"))
+}
+
+fn invalid(message: impl Into<String>) -> Fail {
+    (sym_status::SYM_STATUS_INVALID_ARGUMENT, message.into())
+}
+
+/// Checks a params pointer: NULL, unknown or freed pointers are errors.
+fn params_ref<'a>(p: *const sym_params, name: &str) -> Result<&'a sym_params, Fail> {
+    if p.is_null() {
+        return Err(null(name));
+    }
+    if !is_live(p as usize) {
+        return Err(invalid(format!("{name} is not a live sym_params (freed or not from sym_params_new)")));
+    }
+    // SAFETY: registered pointers come from Box::into_raw in sym_params_new and are removed
+    // before being freed.
+    Ok(unsafe { &*p })
+}
+
+fn params_mut<'a>(p: *mut sym_params) -> Result<&'a mut sym_params, Fail> {
+    params_ref(p, "params")?;
+    // SAFETY: as in params_ref; the caller must not share the handle across threads while
+    // setting (documented).
+    Ok(unsafe { &mut *p })
+}
+
+fn result_ref<'a>(r: *const sym_result) -> Result<&'a sym_result, Fail> {
+    if r.is_null() {
+        return Err(null("result"));
+    }
+    if !is_live(r as usize) {
+        return Err(invalid("result is not a live sym_result (freed or not from sym_detect)"));
+    }
+    // SAFETY: registered pointers come from Box::into_raw in sym_detect.
+    Ok(unsafe { &*r })
+}
+
+/// Creates parameters with the defaults (100 eigenpairs, 64 samples, seed 0, automatic groups).
+/// Returns NULL only if allocation fails. Free with [`sym_params_free`].
+#[no_mangle]
+pub extern "C" fn sym_params_new() -> *mut sym_params {
+    guard_value(std::ptr::null_mut(), || {
+        let p = Box::into_raw(Box::new(sym_params { params: Params::default(), mesh: MeshParams::default() }));
+        register(p as usize);
+        p
+    })
+}
+
+/// Frees parameters from [`sym_params_new`]. NULL, or a pointer already freed, is a no-op.
+#[no_mangle]
+pub extern "C" fn sym_params_free(params: *mut sym_params) {
+    guard_value((), || {
+        if !params.is_null() && unregister(params as usize) {
+            // SAFETY: the pointer was live, so it came from Box::into_raw and is freed once.
+            drop(unsafe { Box::from_raw(params) });
+        }
+    })
+}
+
+/// Applies a checked setting to a live params handle.
+fn set(params: *mut sym_params, name: &str, ok: bool, value: impl std::fmt::Display, apply: impl FnOnce(&mut sym_params)) -> sym_status {
+    guard(|| {
+        let p = params_mut(params)?;
+        if !ok {
+            return Err(invalid(format!("{name}: value {value} is out of range")));
+        }
+        apply(p);
+        Ok(())
+    })
+}
+
+/// Number of Laplace–Beltrami eigenpairs, 3 to 1000 (default 100). Returns `SYM_STATUS_INVALID_ARGUMENT` (settings unchanged) outside the range.
+#[no_mangle]
+pub extern "C" fn sym_params_set_eigenpairs(params: *mut sym_params, value: usize) -> sym_status {
+    set(params, "sym_params_set_eigenpairs", (3..=1000).contains(&value), value, |p| p.params.eigen.k = value)
+}
+
+/// Farthest-point samples, 8 to 1000 (default 64; the paper uses 20–100). Returns `SYM_STATUS_INVALID_ARGUMENT` (settings unchanged) outside the range.
+#[no_mangle]
+pub extern "C" fn sym_params_set_samples(params: *mut sym_params, value: usize) -> sym_status {
+    set(params, "sym_params_set_samples", (8..=1000).contains(&value), value, |p| p.params.samples = value)
+}
+
+/// Random seed (default 0): results are deterministic for a seed. Returns `SYM_STATUS_INVALID_ARGUMENT` (settings unchanged) outside the range.
+#[no_mangle]
+pub extern "C" fn sym_params_set_seed(params: *mut sym_params, value: u64) -> sym_status {
+    set(params, "sym_params_set_seed", true, value, |p| p.params.seed = value)
+}
+
+/// Good voters: WKS distance below this quantile of sample pairs, in (0, 1] (default 0.2). Returns `SYM_STATUS_INVALID_ARGUMENT` (settings unchanged) outside the range.
+#[no_mangle]
+pub extern "C" fn sym_params_set_wks_quantile(params: *mut sym_params, value: f64) -> sym_status {
+    set(params, "sym_params_set_wks_quantile", value > 0.0 && value <= 1.0, value, |p| p.params.voting.wks_quantile = value)
+}
+
+/// Voting tolerance ε as a fraction of the biharmonic diameter, in (0, 0.5] (default 0.04). Returns `SYM_STATUS_INVALID_ARGUMENT` (settings unchanged) outside the range.
+#[no_mangle]
+pub extern "C" fn sym_params_set_voting_eps(params: *mut sym_params, value: f64) -> sym_status {
+    set(params, "sym_params_set_voting_eps", value > 0.0 && value <= 0.5, value, |p| p.params.voting.eps = value)
+}
+
+/// Region tolerance (mean distance mismatch / diameter), in (0, 0.5] (default 0.03). Returns `SYM_STATUS_INVALID_ARGUMENT` (settings unchanged) outside the range.
+#[no_mangle]
+pub extern "C" fn sym_params_set_accept(params: *mut sym_params, value: f64) -> sym_status {
+    set(params, "sym_params_set_accept", value > 0.0 && value <= 0.5, value, |p| p.params.maps.accept = value)
+}
+
+/// Number of symmetry groups, 0 = automatic (default), at most 64. Returns `SYM_STATUS_INVALID_ARGUMENT` (settings unchanged) outside the range.
+#[no_mangle]
+pub extern "C" fn sym_params_set_groups(params: *mut sym_params, value: usize) -> sym_status {
+    set(params, "sym_params_set_groups", value <= 64, value, |p| p.params.groups = if value == 0 { None } else { Some(value) })
+}
+
+/// Nonzero: accept edges shared by more than two triangles (default 0: refuse them). Returns `SYM_STATUS_INVALID_ARGUMENT` (settings unchanged) outside the range.
+#[no_mangle]
+pub extern "C" fn sym_params_set_allow_non_manifold(params: *mut sym_params, value: c_int) -> sym_status {
+    set(params, "sym_params_set_allow_non_manifold", true, value, |p| p.mesh.allow_non_manifold = value != 0)
+}
+
+/// Nonzero: refuse meshes with several connected components (default 0: use the largest). Returns `SYM_STATUS_INVALID_ARGUMENT` (settings unchanged) outside the range.
+#[no_mangle]
+pub extern "C" fn sym_params_set_reject_disconnected(params: *mut sym_params, value: c_int) -> sym_status {
+    set(params, "sym_params_set_reject_disconnected", true, value, |p| p.mesh.components = if value != 0 { ComponentPolicy::Reject } else { ComponentPolicy::Largest })
+}
+
+/// Detects the intrinsic symmetries of a triangle mesh.
+///
+/// `vertices`: `3 * num_vertices` doubles, row-major (x, y, z); `triangles`: `3 * num_triangles`
+/// 0-based indices. `params` may be NULL (defaults). `progress` may be NULL; it is called with
+/// the fraction done and `user_data`, and returning 0 cancels (`SYM_STATUS_CANCELLED`). On
+/// success `*out` receives a result to free with [`sym_free`]; on failure `*out` is untouched
+/// and [`sym_last_error`] tells why.
+///
+/// # Safety
+/// `vertices` and `triangles` must point to arrays of at least the stated lengths, and
+/// `out` to writable memory; the arrays are only read during the call.
+#[no_mangle]
+pub unsafe extern "C" fn sym_detect(
+    vertices: *const f64,
+    num_vertices: usize,
+    triangles: *const u32,
+    num_triangles: usize,
+    params: *const sym_params,
+    progress: sym_progress_fn,
+    user_data: *mut c_void,
+    out: *mut *mut sym_result,
+) -> sym_status {
+    guard(|| {
+        if out.is_null() {
+            return Err(null("out"));
+        }
+        if vertices.is_null() {
+            return Err(null("vertices"));
+        }
+        if triangles.is_null() {
+            return Err(null("triangles"));
+        }
+        const LIMIT: usize = (isize::MAX as usize) / 32;
+        if num_vertices > LIMIT || num_triangles > LIMIT {
+            return Err(invalid(format!("absurd sizes: {num_vertices} vertices, {num_triangles} triangles")));
+        }
+        let (params, mesh_params) = if params.is_null() {
+            (Params::default(), MeshParams::default())
+        } else {
+            let p = params_ref(params, "params")?;
+            (p.params.clone(), p.mesh.clone())
+        };
+        // SAFETY: non-NULL, lengths bounded above, and the caller guarantees the extent.
+        let v = unsafe { std::slice::from_raw_parts(vertices, 3 * num_vertices) };
+        let t = unsafe { std::slice::from_raw_parts(triangles, 3 * num_triangles) };
+        let mesh = Mesh::from_slices(v, t, &mesh_params).map_err(|e| (from_mesh_error(&e), format!("invalid mesh: {e}")))?;
+        let mut report = |f: f64| match progress {
+            // SAFETY: the caller provides a valid function pointer and its user data.
+            Some(cb) => unsafe { cb(f as f32, user_data) != 0 },
+            None => true,
+        };
+        let det = detect(&mesh, &params, &mut report).map_err(|e| (from_error(&e), e.to_string()))?;
+        let fmaps = det
+            .symmetries
+            .iter()
+            .map(|s| {
+                let k = s.fmap.nrows();
+                (0..k * k).map(|i| s.fmap[(i / k, i % k)]).collect()
+            })
+            .collect();
+        let pairs = det.symmetries.iter().map(|s| s.support_pairs.iter().flat_map(|&(a, b)| [a as i64, b as i64]).collect()).collect();
+        let quality = det.vertex_symmetry();
+        let r = Box::into_raw(Box::new(sym_result { det, fmaps, pairs, quality }));
+        register(r as usize);
+        // SAFETY: `out` is non-NULL and writable (caller contract).
+        unsafe { *out = r };
+        Ok(())
+    })
+}
+
+/// Number of symmetries in a result (0 for NULL or an invalid handle).
+#[no_mangle]
+pub extern "C" fn sym_count(result: *const sym_result) -> usize {
+    guard_value(0, || result_ref(result).map_or(0, |r| r.det.symmetries.len()))
+}
+
+/// Number of input vertices of the mesh a result describes (0 for NULL or an invalid handle).
+#[no_mangle]
+pub extern "C" fn sym_vertex_count(result: *const sym_result) -> usize {
+    guard_value(0, || result_ref(result).map_or(0, |r| r.det.vertices))
+}
+
+/// Fills `*out` with symmetry `index` (0 = strongest) of `result`. The pointers in `*out`
+/// borrow from `result` and stay valid until [`sym_free`]. `out->struct_size` must be set.
+///
+/// # Safety
+/// `out` must point to a writable `sym_symmetry` whose `struct_size` is initialised.
+#[no_mangle]
+pub unsafe extern "C" fn sym_get_map(result: *const sym_result, index: usize, out: *mut sym_symmetry) -> sym_status {
+    guard(|| {
+        let r = result_ref(result)?;
+        if out.is_null() {
+            return Err(null("out"));
+        }
+        // SAFETY: `out` is non-NULL; struct_size is the first field and initialised by contract.
+        let caller_size = unsafe { std::ptr::addr_of!((*out).struct_size).read() };
+        let min = std::mem::offset_of!(sym_symmetry, support_pairs) + std::mem::size_of::<*const i64>();
+        if caller_size < min {
+            return Err(invalid(format!("out->struct_size is {caller_size}, at least {min} (sizeof(sym_symmetry)) expected")));
+        }
+        let s = r.det.symmetries.get(index).ok_or_else(|| invalid(format!("index {index} out of range (count {})", r.det.symmetries.len())))?;
+        let value = sym_symmetry {
+            struct_size: std::mem::size_of::<sym_symmetry>().min(caller_size),
+            source: s.source as i64,
+            target: s.target as i64,
+            kind: match s.kind {
+                Kind::Global => sym_kind::SYM_KIND_GLOBAL,
+                Kind::Partial => sym_kind::SYM_KIND_PARTIAL,
+            },
+            order: s.order as u32,
+            group: s.group as u32,
+            region_size: s.region_size,
+            complexity: s.complexity,
+            distortion: s.distortion,
+            num_vertices: s.map.len(),
+            map: s.map.as_ptr(),
+            confidence: s.confidence.as_ptr(),
+            fmap_size: s.fmap.nrows(),
+            fmap: r.fmaps[index].as_ptr(),
+            num_support_pairs: s.support_pairs.len(),
+            support_pairs: r.pairs[index].as_ptr(),
+        };
+        let n = std::mem::size_of::<sym_symmetry>().min(caller_size);
+        // SAFETY: `out` has at least `caller_size` writable bytes (caller contract), n ≤ that.
+        unsafe { std::ptr::copy_nonoverlapping((&value as *const sym_symmetry).cast::<u8>(), out.cast::<u8>(), n) };
+        Ok(())
+    })
+}
+
+/// Per-vertex symmetry summary (the largest confidence over all symmetries), `sym_vertex_count`
+/// values borrowed from `result` until [`sym_free`]; NULL for NULL or an invalid handle.
+#[no_mangle]
+pub extern "C" fn sym_vertex_symmetry(result: *const sym_result) -> *const f64 {
+    guard_value(std::ptr::null(), || result_ref(result).map_or(std::ptr::null(), |r| r.quality.as_ptr()))
+}
+
+/// Frees a result from [`sym_detect`]. NULL, or a pointer already freed, is a no-op.
+#[no_mangle]
+pub extern "C" fn sym_free(result: *mut sym_result) {
+    guard_value((), || {
+        if !result.is_null() && unregister(result as usize) {
+            // SAFETY: the pointer was live, so it came from Box::into_raw and is freed once.
+            drop(unsafe { Box::from_raw(result) });
+        }
+    })
+}
+
+/// Copies the calling thread's last error message (empty after a success) into `buf` (at most
+/// `len` bytes including the terminating NUL; truncated to fit) and stores the full message
+/// length (without NUL) in `*out_len` when `out_len` is not NULL. `buf` may be NULL with
+/// `len == 0` to query the length.
+///
+/// # Safety
+/// `buf` must have `len` writable bytes; `out_len` must be NULL or writable.
+#[no_mangle]
+pub unsafe extern "C" fn sym_last_error(buf: *mut c_char, len: usize, out_len: *mut usize) -> sym_status {
+    let message = last_error();
+    let status = guard(|| {
+        if buf.is_null() && len > 0 {
+            return Err(null("buf"));
+        }
+        if !out_len.is_null() {
+            // SAFETY: non-NULL and writable by contract.
+            unsafe { *out_len = message.len() };
+        }
+        if len > 0 {
+            let n = message.len().min(len - 1);
+            // SAFETY: buf has len ≥ n + 1 writable bytes.
+            unsafe {
+                std::ptr::copy_nonoverlapping(message.as_ptr(), buf.cast::<u8>(), n);
+                *buf.add(n) = 0;
+            }
+        }
+        Ok(())
+    });
+    // Reading the message must not erase it.
+    if status == sym_status::SYM_STATUS_OK {
+        set_error(message);
+    }
+    status
+}

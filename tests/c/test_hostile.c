@@ -1,0 +1,197 @@
+/* Hostile input battery: every case must return the documented status and a message, never
+ * crash, hang or leak (run under ASan/UBSan and valgrind by ctest). Usage: test_hostile MESH.off */
+#include "intrinsym.h"
+#include "common.h"
+
+static int cases = 0;
+
+static void expect(const char *name, sym_status got, sym_status want, int want_message) {
+    char buf[512];
+    size_t len = 0;
+    CHECK(got == want, "%s: status %d (%s), expected %d", name, (int)got, sym_status_str(got), (int)want);
+    CHECK(sym_last_error(buf, sizeof buf, &len) == SYM_STATUS_OK, "%s: last_error", name);
+    if (want_message) CHECK(len > 0 && strlen(buf) > 0, "%s: no message", name);
+    printf("%-46s -> %-28s %s\n", name, sym_status_str(got), buf);
+    cases++;
+}
+
+static int cancel_after = 0;
+static int cancelling(float fraction, void *user_data) {
+    int *n = (int *)user_data;
+    (void)fraction;
+    return ++*n < cancel_after;
+}
+
+static sym_status detect(const double *v, size_t nv, const uint32_t *t, size_t nt, const sym_params *p) {
+    sym_result *r = NULL;
+    sym_status s = sym_detect(v, nv, t, nt, p, NULL, NULL, &r);
+    if (s == SYM_STATUS_OK) {
+        CHECK(r != NULL, "OK without result");
+        sym_free(r);
+    } else {
+        CHECK(r == NULL, "out written on failure");
+    }
+    return s;
+}
+
+int main(int argc, char **argv) {
+    test_mesh m;
+    const double tet_v[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+    const uint32_t tet_t[12] = {0, 2, 1, 0, 1, 3, 1, 2, 3, 0, 3, 2};
+    double bad_v[12];
+    uint32_t bad_t[12];
+    sym_params *p = sym_params_new();
+    sym_result *r = NULL, *good = NULL;
+    sym_symmetry s;
+    char small[8];
+    size_t len;
+    int n = 0;
+    CHECK(argc == 2 && read_off(argv[1], &m), "cannot read mesh");
+    CHECK(p != NULL, "params");
+
+    /* NULL pointers. */
+    expect("NULL vertices", sym_detect(NULL, 4, tet_t, 4, NULL, NULL, NULL, &r), SYM_STATUS_NULL_PARAMETER, 1);
+    expect("NULL triangles", sym_detect(tet_v, 4, NULL, 4, NULL, NULL, NULL, &r), SYM_STATUS_NULL_PARAMETER, 1);
+    expect("NULL out", sym_detect(tet_v, 4, tet_t, 4, NULL, NULL, NULL, NULL), SYM_STATUS_NULL_PARAMETER, 1);
+    expect("NULL everything", sym_detect(NULL, 0, NULL, 0, NULL, NULL, NULL, NULL), SYM_STATUS_NULL_PARAMETER, 1);
+    expect("get_map NULL result", sym_get_map(NULL, 0, &s), SYM_STATUS_NULL_PARAMETER, 1);
+    expect("setter NULL params", sym_params_set_samples(NULL, 32), SYM_STATUS_NULL_PARAMETER, 1);
+    expect("last_error NULL buf with len", sym_last_error(NULL, 8, &len), SYM_STATUS_NULL_PARAMETER, 1);
+    CHECK(sym_count(NULL) == 0 && sym_vertex_count(NULL) == 0 && sym_vertex_symmetry(NULL) == NULL, "NULL queries");
+    cases++;
+    sym_free(NULL);
+    sym_params_free(NULL);
+    cases++;
+
+    /* Sizes. */
+    expect("zero vertices", detect(tet_v, 0, tet_t, 4, NULL), SYM_STATUS_INVALID_MESH, 1);
+    expect("zero triangles", detect(tet_v, 4, tet_t, 0, NULL), SYM_STATUS_INVALID_MESH, 1);
+    expect("absurd vertex count", detect(tet_v, SIZE_MAX / 2, tet_t, 4, NULL), SYM_STATUS_INVALID_ARGUMENT, 1);
+    expect("absurd triangle count", detect(tet_v, 4, tet_t, SIZE_MAX / 3, NULL), SYM_STATUS_INVALID_ARGUMENT, 1);
+    expect("vertex count too small for indices", detect(tet_v, 3, tet_t, 4, NULL), SYM_STATUS_INVALID_MESH, 1);
+
+    /* Coordinates. */
+    memcpy(bad_v, tet_v, sizeof bad_v);
+    bad_v[4] = NAN;
+    expect("NaN coordinate", detect(bad_v, 4, tet_t, 4, NULL), SYM_STATUS_INVALID_MESH, 1);
+    bad_v[4] = INFINITY;
+    expect("+inf coordinate", detect(bad_v, 4, tet_t, 4, NULL), SYM_STATUS_INVALID_MESH, 1);
+    bad_v[4] = -INFINITY;
+    expect("-inf coordinate", detect(bad_v, 4, tet_t, 4, NULL), SYM_STATUS_INVALID_MESH, 1);
+
+    /* Indices. */
+    memcpy(bad_t, tet_t, sizeof bad_t);
+    bad_t[5] = 4;
+    expect("index out of range", detect(tet_v, 4, bad_t, 4, NULL), SYM_STATUS_INVALID_MESH, 1);
+    bad_t[5] = UINT32_MAX;
+    expect("index UINT32_MAX", detect(tet_v, 4, bad_t, 4, NULL), SYM_STATUS_INVALID_MESH, 1);
+    memcpy(bad_t, tet_t, sizeof bad_t);
+    bad_t[4] = bad_t[3];
+    expect("repeated index in a triangle", detect(tet_v, 4, bad_t, 4, NULL), SYM_STATUS_INVALID_MESH, 1);
+    {
+        const uint32_t twice[15] = {0, 2, 1, 0, 1, 3, 1, 2, 3, 0, 3, 2, 0, 2, 1};
+        expect("duplicate triangle (non-manifold)", detect(tet_v, 4, twice, 5, NULL), SYM_STATUS_INVALID_MESH, 1);
+    }
+    {
+        const double fan_v[15] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, -1, 0};
+        const uint32_t fan_t[9] = {0, 1, 2, 0, 1, 3, 0, 1, 4};
+        expect("edge shared by 3 triangles", detect(fan_v, 5, fan_t, 3, NULL), SYM_STATUS_INVALID_MESH, 1);
+    }
+
+    /* Degenerate and tiny meshes. */
+    {
+        const double line_v[12] = {0, 0, 0, 1, 0, 0, 2, 0, 0, 3, 0, 0};
+        expect("all triangles degenerate", detect(line_v, 4, tet_t, 4, NULL), SYM_STATUS_INVALID_MESH, 1);
+        expect("all vertices coincide", detect((const double[12]){1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1}, 4, tet_t, 4, NULL), SYM_STATUS_INVALID_MESH, 1);
+    }
+    /* k (default 100) larger than the vertex count is clamped to it: tiny meshes still run. */
+    expect("3-vertex mesh, k clamped to 3", detect(tet_v, 3, tet_t, 1, NULL), SYM_STATUS_OK, 0);
+    expect("tetrahedron, k clamped to 4", detect(tet_v, 4, tet_t, 4, NULL), SYM_STATUS_OK, 0);
+    {
+        sym_params *small_k = sym_params_new();
+        sym_status st;
+        CHECK(sym_params_set_eigenpairs(small_k, 4) == SYM_STATUS_OK, "k=4");
+        CHECK(sym_params_set_samples(small_k, 8) == SYM_STATUS_OK, "samples");
+        st = detect(tet_v, 4, tet_t, 4, small_k);
+        CHECK(st == SYM_STATUS_OK, "a tetrahedron with k = 4 runs (%s)", sym_status_str(st));
+        cases++;
+        sym_params_free(small_k);
+    }
+
+    /* Disconnected: two tetrahedra. */
+    {
+        double two_v[24];
+        uint32_t two_t[24];
+        int i;
+        sym_params *reject = sym_params_new();
+        for (i = 0; i < 12; i++) { two_v[i] = tet_v[i]; two_v[12 + i] = tet_v[i] + 5.0; two_t[i] = tet_t[i]; two_t[12 + i] = tet_t[i] + 4; }
+        CHECK(sym_params_set_reject_disconnected(reject, 1) == SYM_STATUS_OK, "reject");
+        expect("disconnected, rejected", detect(two_v, 8, two_t, 8, reject), SYM_STATUS_INVALID_MESH, 1);
+        sym_params_free(reject);
+    }
+
+    /* Parameter values. */
+    expect("eigenpairs 0", sym_params_set_eigenpairs(p, 0), SYM_STATUS_INVALID_ARGUMENT, 1);
+    expect("eigenpairs 10^6", sym_params_set_eigenpairs(p, 1000000), SYM_STATUS_INVALID_ARGUMENT, 1);
+    expect("samples 1", sym_params_set_samples(p, 1), SYM_STATUS_INVALID_ARGUMENT, 1);
+    expect("eps NaN", sym_params_set_voting_eps(p, NAN), SYM_STATUS_INVALID_ARGUMENT, 1);
+    expect("eps negative", sym_params_set_voting_eps(p, -0.1), SYM_STATUS_INVALID_ARGUMENT, 1);
+    expect("wks quantile 2", sym_params_set_wks_quantile(p, 2.0), SYM_STATUS_INVALID_ARGUMENT, 1);
+    expect("accept inf", sym_params_set_accept(p, INFINITY), SYM_STATUS_INVALID_ARGUMENT, 1);
+    expect("groups 1000", sym_params_set_groups(p, 1000), SYM_STATUS_INVALID_ARGUMENT, 1);
+    expect("valid setter", sym_params_set_groups(p, 0), SYM_STATUS_OK, 0);
+    {
+        sym_params *freed = sym_params_new();
+        sym_params_free(freed);
+        expect("setter on freed params", sym_params_set_samples(freed, 32), SYM_STATUS_INVALID_ARGUMENT, 1);
+        sym_params_free(freed); /* double free: no-op */
+        cases++;
+    }
+
+    /* Cancel from the callback. */
+    cancel_after = 3;
+    n = 0;
+    r = NULL;
+    expect("cancel from progress callback", sym_detect(m.v, m.nv, m.t, m.nt, p, cancelling, &n, &r), SYM_STATUS_CANCELLED, 1);
+    CHECK(r == NULL && n == 3, "cancel: out untouched, callback called %d times", n);
+
+    /* A good result, then misuse of it. */
+    CHECK(sym_detect(m.v, m.nv, m.t, m.nt, p, NULL, NULL, &good) == SYM_STATUS_OK, "good detect");
+    memset(&s, 0, sizeof s);
+    s.struct_size = sizeof s;
+    expect("get_map index out of range", sym_get_map(good, sym_count(good), &s), SYM_STATUS_INVALID_ARGUMENT, 1);
+    expect("get_map index SIZE_MAX", sym_get_map(good, SIZE_MAX, &s), SYM_STATUS_INVALID_ARGUMENT, 1);
+    expect("get_map NULL out", sym_get_map(good, 0, NULL), SYM_STATUS_NULL_PARAMETER, 1);
+    s.struct_size = 8;
+    expect("get_map struct_size too small", sym_get_map(good, 0, &s), SYM_STATUS_INVALID_ARGUMENT, 1);
+    s.struct_size = sizeof s;
+    expect("get_map valid", sym_get_map(good, 0, &s), SYM_STATUS_OK, 0);
+    {
+        sym_result *bogus = (sym_result *)(void *)&s;
+        expect("get_map on a pointer not from sym_detect", sym_get_map(bogus, 0, &s), SYM_STATUS_INVALID_ARGUMENT, 1);
+        CHECK(sym_count(bogus) == 0, "count of bogus handle");
+        sym_free(bogus); /* not ours: ignored */
+        cases++;
+    }
+    sym_free(good);
+    expect("get_map after free", sym_get_map(good, 0, &s), SYM_STATUS_INVALID_ARGUMENT, 1);
+    sym_free(good); /* double free: no-op */
+    cases++;
+
+    /* Last error: truncation and length query. */
+    (void)sym_params_set_samples(p, 1);
+    CHECK(sym_last_error(small, sizeof small, &len) == SYM_STATUS_OK && strlen(small) == sizeof small - 1 && len > sizeof small, "truncation");
+    CHECK(sym_last_error(NULL, 0, &len) == SYM_STATUS_OK && len > 0, "length query");
+    cases++;
+    {
+        int st;
+        for (st = 0; st <= 7; st++) CHECK(sym_status_str((sym_status)st) != NULL && strlen(sym_status_str((sym_status)st)) > 0, "status_str");
+        cases++;
+    }
+
+    sym_params_free(p);
+    free_mesh(&m);
+    printf("test_hostile: %d cases, all as documented\n", cases);
+    CHECK(cases >= 40, "only %d cases", cases);
+    return 0;
+}
