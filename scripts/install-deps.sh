@@ -3,8 +3,8 @@
 # when everything is present. Needs root or sudo.
 set -euo pipefail
 need=()
-for pkg in cmake make g++ pkg-config python3; do
-  command -v "$pkg" >/dev/null 2>&1 || need+=("$pkg")
+for cmd in cmake make g++ pkg-config python3 valgrind; do
+  command -v "$cmd" >/dev/null 2>&1 || need+=("$cmd")
 done
 [ ${#need[@]} -eq 0 ] && exit 0
 SUDO=""
@@ -12,4 +12,4 @@ SUDO=""
 export DEBIAN_FRONTEND=noninteractive
 $SUDO apt-get update -qq
 $SUDO apt-get install -y -qq --no-install-recommends -o DPkg::Lock::Timeout=900 \
-  cmake make g++ pkg-config python3 >/dev/null
+  cmake make g++ pkg-config python3 valgrind >/dev/null

@@ -1,0 +1,80 @@
+//! The C ABI called from Rust (as rav1e's capi tests do): handles, statuses, borrowed views.
+
+use std::ffi::CStr;
+use std::ptr;
+
+use intrinsym::ffi::*;
+use intrinsym::shapes::{self, Pose};
+
+fn last_error() -> String {
+    let mut buf = [0 as std::ffi::c_char; 256];
+    let mut len = 0usize;
+    assert_eq!(unsafe { sym_last_error(buf.as_mut_ptr(), buf.len(), &mut len) }, sym_status::SYM_STATUS_OK);
+    unsafe { CStr::from_ptr(buf.as_ptr()) }.to_string_lossy().into_owned()
+}
+
+#[test]
+fn detect_get_map_free() {
+    let c = shapes::quadruped(3, Pose::Rest, 0.0, 0);
+    let v: Vec<f64> = c.mesh.vertices.iter().flatten().copied().collect();
+    let t: Vec<u32> = c.mesh.triangles.iter().flatten().copied().collect();
+    let p = sym_params_new();
+    assert_eq!(sym_params_set_samples(p, 48), sym_status::SYM_STATUS_OK);
+    let mut r: *mut sym_result = ptr::null_mut();
+    let st = unsafe { sym_detect(v.as_ptr(), c.mesh.num_vertices(), t.as_ptr(), c.mesh.num_triangles(), p, None, ptr::null_mut(), &mut r) };
+    assert_eq!(st, sym_status::SYM_STATUS_OK, "{}", last_error());
+    assert!(sym_count(r) >= 1);
+    assert_eq!(sym_vertex_count(r), c.mesh.num_vertices());
+    let mut s: sym_symmetry = unsafe { std::mem::zeroed() };
+    s.struct_size = std::mem::size_of::<sym_symmetry>();
+    assert_eq!(unsafe { sym_get_map(r, 0, &mut s) }, sym_status::SYM_STATUS_OK);
+    let map = unsafe { std::slice::from_raw_parts(s.map, s.num_vertices) };
+    let exact = (0..map.len()).filter(|&i| map[i] == c.mirror[i] as i64).count();
+    assert!(exact * 100 >= 95 * map.len(), "{exact} of {}", map.len());
+    let fmap = unsafe { std::slice::from_raw_parts(s.fmap, s.fmap_size * s.fmap_size) };
+    assert!(fmap.iter().all(|x| x.is_finite()));
+    sym_free(r);
+    sym_free(r); // double free is a no-op
+    assert_eq!(sym_count(r), 0, "a freed handle is refused");
+    sym_params_free(p);
+}
+
+#[test]
+fn failures_leave_out_untouched_and_explain() {
+    let v = [0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, f64::NAN, 0.0];
+    let t = [0u32, 1, 2];
+    let sentinel = 0x1234 as *mut sym_result;
+    let mut r = sentinel;
+    let st = unsafe { sym_detect(v.as_ptr(), 3, t.as_ptr(), 1, ptr::null(), None, ptr::null_mut(), &mut r) };
+    assert_eq!(st, sym_status::SYM_STATUS_INVALID_MESH);
+    assert_eq!(r, sentinel);
+    assert!(last_error().contains("vertex 2 has a NaN"), "{}", last_error());
+    let st = unsafe { sym_detect(ptr::null(), 3, t.as_ptr(), 1, ptr::null(), None, ptr::null_mut(), &mut r) };
+    assert_eq!(st, sym_status::SYM_STATUS_NULL_PARAMETER);
+    assert!(last_error().contains("vertices"));
+    let msg = unsafe { CStr::from_ptr(sym_status_str(sym_status::SYM_STATUS_CANCELLED)) };
+    assert!(msg.to_str().unwrap().contains("cancel"));
+    let version = unsafe { CStr::from_ptr(sym_version()) };
+    assert_eq!(version.to_str().unwrap(), env!("CARGO_PKG_VERSION"));
+    assert_eq!(sym_abi_version(), SYM_ABI_VERSION);
+}
+
+unsafe extern "C" fn stop_at_half(fraction: f32, user: *mut std::ffi::c_void) -> std::ffi::c_int {
+    unsafe { *(user as *mut f32) = fraction };
+    (fraction < 0.5) as std::ffi::c_int
+}
+
+#[test]
+fn progress_callback_cancels() {
+    let c = shapes::quadruped(3, Pose::Rest, 0.0, 0);
+    let v: Vec<f64> = c.mesh.vertices.iter().flatten().copied().collect();
+    let t: Vec<u32> = c.mesh.triangles.iter().flatten().copied().collect();
+    let mut seen = 0.0f32;
+    let mut r: *mut sym_result = ptr::null_mut();
+    let st = unsafe {
+        sym_detect(v.as_ptr(), c.mesh.num_vertices(), t.as_ptr(), c.mesh.num_triangles(), ptr::null(), Some(stop_at_half), (&mut seen as *mut f32).cast(), &mut r)
+    };
+    assert_eq!(st, sym_status::SYM_STATUS_CANCELLED);
+    assert!(r.is_null());
+    assert!(seen >= 0.5, "last fraction {seen}");
+}
