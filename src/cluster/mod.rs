@@ -132,7 +132,7 @@ mod tests {
             assert_eq!(l[2 * i + 1], l[1]);
         }
         assert_ne!(l[0], l[1]);
-        let blob: Vec<Vec<f64>> = (0..8).map(|i| vec![(i as f64 * 0.7).sin(), (i as f64 * 1.3).cos()]).collect();
+        let blob: Vec<Vec<f64>> = (0..16).map(|i| vec![(i % 4) as f64, (i / 4) as f64]).collect(); // a uniform grid
         let lb = cluster(&blob, None);
         assert!(lb.iter().all(|&x| x == 0), "{lb:?}");
         assert_eq!(cluster(&f, Some(3)).iter().max(), Some(&2));

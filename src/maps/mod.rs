@@ -169,13 +169,14 @@ fn nearest_profile(dist: impl Fn(usize) -> f64, anchors: usize, k: usize, out: &
     }
 }
 
-/// Greedy descent of `cost` on the mesh graph from `start`.
-fn descend_by(ctx: &Context<'_>, start: usize, mut cost: impl FnMut(usize) -> f64) -> (usize, f64) {
+/// Greedy descent of `cost` on the mesh graph (CSR `adjacency`) from `start`: moves to the best
+/// neighbour while it improves. Returns the vertex and its cost.
+pub(crate) fn greedy_descent(adjacency: &(Vec<usize>, Vec<u32>), start: usize, mut cost: impl FnMut(usize) -> f64) -> (usize, f64) {
     let mut w = start;
     let mut c = cost(w);
     loop {
         let mut best = (w, c);
-        for &u in ctx.neighbours(w) {
+        for &u in &adjacency.1[adjacency.0[w]..adjacency.0[w + 1]] {
             let cu = cost(u as usize);
             if cu < best.1 {
                 best = (u as usize, cu);
@@ -186,6 +187,11 @@ fn descend_by(ctx: &Context<'_>, start: usize, mut cost: impl FnMut(usize) -> f6
         }
         (w, c) = best;
     }
+}
+
+/// Greedy descent of `cost` on the mesh graph from `start`.
+fn descend_by(ctx: &Context<'_>, start: usize, cost: impl FnMut(usize) -> f64) -> (usize, f64) {
+    greedy_descent(&ctx.adjacency, start, cost)
 }
 
 /// Greedy descent of the mismatch on the mesh graph from `start`.

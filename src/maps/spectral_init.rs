@@ -102,6 +102,7 @@ pub fn point_map(basis: &Eigenbasis, adjacency: &(Vec<usize>, Vec<u32>), c: &Mat
             }
             let mut w = usize::MAX;
             let mut best = f64::INFINITY;
+            // Start from the best image among the already mapped neighbours.
             for &u in nbrs(v) {
                 let m = map[u as usize];
                 if m != usize::MAX {
@@ -113,22 +114,8 @@ pub fn point_map(basis: &Eigenbasis, adjacency: &(Vec<usize>, Vec<u32>), c: &Mat
             }
             if w == usize::MAX {
                 w = search.iter().copied().min_by(|&a, &b| dist(a, &target).total_cmp(&dist(b, &target))).unwrap_or(v);
-                best = dist(w, &target);
             }
-            loop {
-                let mut moved = false;
-                for &u in nbrs(w) {
-                    let d = dist(u as usize, &target);
-                    if d < best {
-                        best = d;
-                        w = u as usize;
-                        moved = true;
-                    }
-                }
-                if !moved {
-                    break;
-                }
-            }
+            let w = super::greedy_descent(adjacency, w, |u| dist(u, &target)).0;
             map[v] = w;
             for &u in nbrs(v) {
                 if !queued[u as usize] {

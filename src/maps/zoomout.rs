@@ -55,22 +55,7 @@ pub fn zoomout(basis: &Eigenbasis, adjacency: &(Vec<usize>, Vec<u32>), map: &mut
         };
         for v in 0..n {
             let target = gt.col_as_slice(v);
-            let mut w = map[v];
-            let mut best = dist(w, target);
-            loop {
-                let mut moved = false;
-                for &u in &adjacency.1[adjacency.0[w]..adjacency.0[w + 1]] {
-                    let d = dist(u as usize, target);
-                    if d < best {
-                        best = d;
-                        w = u as usize;
-                        moved = true;
-                    }
-                }
-                if !moved {
-                    break;
-                }
-            }
+            let w = super::greedy_descent(adjacency, map[v], |u| dist(u, target)).0;
             map[v] = w;
         }
         if k >= kmax {
