@@ -88,6 +88,9 @@ enum Command {
         /// Size: subdivision level (icosphere, needle-sphere) or grid size (torus: 3·size² vertices).
         #[arg(long, default_value_t = 34)]
         size: usize,
+        /// For the quadrupeds: also write the true left–right map as `x sym_x` lines.
+        #[arg(long)]
+        truth: Option<PathBuf>,
     },
 }
 
@@ -284,15 +287,26 @@ fn run(cli: Cli) -> Result<(), intrinsym::Error> {
                 }
             }
         }
-        Command::Generate { shape, output, size } => {
-            let mesh = match shape {
-                Shape::Icosphere => shapes::icosphere(size as u32),
-                Shape::Torus => shapes::bumpy_torus(size),
-                Shape::NeedleSphere => shapes::needle_sphere(size as u32),
-                Shape::Quadruped => shapes::quadruped(size as u32, shapes::Pose::Walking, 0.0, 0).mesh,
-                Shape::QuadrupedRest => shapes::quadruped(size as u32, shapes::Pose::Rest, 0.0, 0).mesh,
-                Shape::Star => shapes::star(5, size as u32).mesh,
+        Command::Generate { shape, output, size, truth } => {
+            let creature = |pose| shapes::quadruped(size as u32, pose, 0.0, 0);
+            let (mesh, mirror) = match shape {
+                Shape::Icosphere => (shapes::icosphere(size as u32), None),
+                Shape::Torus => (shapes::bumpy_torus(size), None),
+                Shape::NeedleSphere => (shapes::needle_sphere(size as u32), None),
+                Shape::Quadruped => {
+                    let c = creature(shapes::Pose::Walking);
+                    (c.mesh, Some(c.mirror))
+                }
+                Shape::QuadrupedRest => {
+                    let c = creature(shapes::Pose::Rest);
+                    (c.mesh, Some(c.mirror))
+                }
+                Shape::Star => (shapes::star(5, size as u32).mesh, None),
             };
+            if let (Some(path), Some(mirror)) = (truth, mirror) {
+                let text: String = mirror.iter().enumerate().map(|(v, m)| format!("{v} {m}\n")).collect();
+                std::fs::write(&path, text).map_err(|source| intrinsym::mesh::IoError::Os { path: path.clone(), source })?;
+            }
             write_off(&output, &mesh.vertices, &mesh.triangles)?;
             println!("wrote {} ({} vertices)", output.display(), mesh.num_vertices());
         }

@@ -1,0 +1,187 @@
+#include "filter_intrinsym.h"
+
+#include <cmath>
+#include <vector>
+
+#include "intrinsym.h"
+
+namespace {
+
+enum Show { SHOW_STRONGEST = 0, SHOW_ALL = 1, SHOW_INDEX = 2 };
+enum Colouring { COLOUR_CORRESPONDENCE = 0, COLOUR_GROUPS = 1, COLOUR_QUALITY = 2 };
+
+const unsigned char PALETTE[10][3] = {{78, 121, 167}, {242, 142, 43}, {225, 87, 89}, {118, 183, 178}, {89, 161, 79},
+                                      {237, 201, 72}, {176, 122, 161}, {255, 157, 167}, {156, 117, 95}, {186, 176, 172}};
+
+// MeshLab's progress bar as the library's progress callback. CallBackPos returning false
+// (a cancelled run) cancels the detection.
+struct Progress {
+    vcg::CallBackPos *cb;
+};
+int progress(float fraction, void *user_data) {
+    const Progress *p = static_cast<const Progress *>(user_data);
+    if (p == nullptr || p->cb == nullptr) return 1;
+    return p->cb(int(100.0f * fraction), "Intrinsic symmetry") ? 1 : 0;
+}
+
+QString last_error() {
+    char buf[1024];
+    sym_last_error(buf, sizeof buf, nullptr);
+    return QString::fromUtf8(buf);
+}
+
+}  // namespace
+
+FilterIntrinsymPlugin::FilterIntrinsymPlugin()
+{
+    typeList << FP_INTRINSIC_SYMMETRY;
+    for (FilterIDType tt : types()) actionList << new QAction(filterName(tt), this);
+}
+
+QString FilterIntrinsymPlugin::pluginName() const { return "FilterIntrinsym"; }
+
+QString FilterIntrinsymPlugin::filterName(FilterIDType) const { return "Intrinsic Symmetry: Detect"; }
+
+QString FilterIntrinsymPlugin::filterInfo(FilterIDType) const
+{
+    return "Detects the intrinsic symmetries of the mesh (Mukhopadhyay, Bhandarkar & Porikli, "
+           "<i>Detection and Characterization of Intrinsic Symmetry</i>): self-maps that preserve "
+           "distances on the surface, including ones a pose hides from a mirror plane and partial "
+           "ones. Writes per-vertex <b>quality</b> = symmetry confidence in [0, 1] and per-vertex "
+           "<b>colour</b>: with <i>Correspondence</i>, a vertex and its image share a colour; with "
+           "<i>Groups</i>, each symmetry's region is painted with its group colour; with "
+           "<i>Quality</i>, a red-to-blue ramp of the confidence. One line per symmetry is logged "
+           "(kind, group, order, complexity, region size). Library: intrinsym "
+           + QString(sym_version()) + ".";
+}
+
+FilterIntrinsymPlugin::FilterClass FilterIntrinsymPlugin::getClass(QAction *)
+{
+    return FilterClass(MeshFilterInterface::Quality | MeshFilterInterface::VertexColoring);
+}
+
+MeshFilterInterface::FILTER_ARITY FilterIntrinsymPlugin::filterArity(QAction *) const { return SINGLE_MESH; }
+
+int FilterIntrinsymPlugin::getPreConditions(QAction *) const { return MeshModel::MM_NONE; }
+
+int FilterIntrinsymPlugin::postCondition(QAction *) const { return MeshModel::MM_VERTQUALITY | MeshModel::MM_VERTCOLOR; }
+
+void FilterIntrinsymPlugin::initParameterSet(QAction *, MeshModel &, RichParameterList &parlst)
+{
+    parlst.addParam(RichInt("eigenpairs", 100, "Eigenpairs", "Number of Laplace-Beltrami eigenpairs (3 to 1000)."));
+    parlst.addParam(RichInt("samples", 64, "Samples", "Farthest-point samples used for voting (8 to 1000; the paper uses 20-100)."));
+    parlst.addParam(RichFloat("wksQuantile", 0.2f, "WKS quantile", "Good voters: sample pairs whose wave kernel signatures are closer than this quantile of all pairs."));
+    parlst.addParam(RichFloat("votingEps", 0.04f, "Voting tolerance", "Distance tolerance of the voting, as a fraction of the biharmonic diameter."));
+    parlst.addParam(RichFloat("accept", 0.03f, "Region tolerance", "A vertex belongs to a symmetry's region when its distances are preserved within this fraction of the diameter."));
+    parlst.addParam(RichInt("seed", 0, "Seed", "Random seed: results are deterministic for a seed."));
+    parlst.addParam(RichEnum("show", SHOW_STRONGEST, QStringList() << "Strongest" << "All" << "Index", "Show", "Which symmetry to write: the strongest, all (quality = best confidence over all), or the one at Index."));
+    parlst.addParam(RichInt("index", 0, "Index", "Symmetry shown when Show is Index (0 = strongest)."));
+    parlst.addParam(RichEnum("colouring", COLOUR_CORRESPONDENCE, QStringList() << "Correspondence" << "Groups" << "Quality", "Colouring", "Correspondence: a vertex and its image share a colour. Groups: regions painted by symmetry group. Quality: colour ramp of the confidence."));
+}
+
+bool FilterIntrinsymPlugin::applyFilter(QAction *, MeshDocument &md, const RichParameterList &par, vcg::CallBackPos *cb)
+{
+    // A failure is reported twice: errorMessage (the GUI's dialog) and the log (meshlabserver
+    // prints the log but not errorMessage).
+    auto fail = [this](const QString &message) {
+        errorMessage = message;
+        Log("Intrinsic Symmetry: %s", qUtf8Printable(message));
+        return false;
+    };
+    MeshModel *mm = md.mm();
+    if (mm == nullptr) return fail("No mesh.");
+    CMeshO &m = mm->cm;
+    // Pack the non-deleted vertices and faces; `compact` maps MeshLab's vertex index to ours.
+    std::vector<int> compact(m.vert.size(), -1);
+    std::vector<CMeshO::VertexPointer> verts;
+    std::vector<double> xyz;
+    for (size_t i = 0; i < m.vert.size(); ++i) {
+        if (m.vert[i].IsD()) continue;
+        compact[i] = int(verts.size());
+        verts.push_back(&m.vert[i]);
+        const auto &p = m.vert[i].cP();
+        xyz.push_back(p[0]);
+        xyz.push_back(p[1]);
+        xyz.push_back(p[2]);
+    }
+    std::vector<uint32_t> tri;
+    for (auto fi = m.face.begin(); fi != m.face.end(); ++fi) {
+        if (fi->IsD()) continue;
+        for (int k = 0; k < 3; ++k) tri.push_back(uint32_t(compact[vcg::tri::Index(m, fi->V(k))]));
+    }
+    if (tri.empty()) return fail("needs a triangle mesh: this mesh has no faces (a point cloud?).");
+
+    sym_params *params = sym_params_new();
+    sym_status st = SYM_STATUS_OK;
+    const int eigenpairs = par.getInt("eigenpairs"), samples = par.getInt("samples"), seed = par.getInt("seed");
+    if (st == SYM_STATUS_OK) st = eigenpairs > 0 ? sym_params_set_eigenpairs(params, size_t(eigenpairs)) : SYM_STATUS_INVALID_ARGUMENT;
+    if (st == SYM_STATUS_OK) st = samples > 0 ? sym_params_set_samples(params, size_t(samples)) : SYM_STATUS_INVALID_ARGUMENT;
+    if (st == SYM_STATUS_OK) st = sym_params_set_wks_quantile(params, par.getFloat("wksQuantile"));
+    if (st == SYM_STATUS_OK) st = sym_params_set_voting_eps(params, par.getFloat("votingEps"));
+    if (st == SYM_STATUS_OK) st = sym_params_set_accept(params, par.getFloat("accept"));
+    if (st == SYM_STATUS_OK) st = sym_params_set_seed(params, uint64_t(seed < 0 ? 0 : seed));
+    if (st != SYM_STATUS_OK) {
+        sym_params_free(params);
+        return fail(QString("invalid parameter: ") + last_error());
+    }
+    sym_result *result = nullptr;
+    Progress state{cb};
+    st = sym_detect(xyz.data(), verts.size(), tri.data(), tri.size() / 3, params, progress, &state, &result);
+    sym_params_free(params);
+    if (st != SYM_STATUS_OK) return fail(QString("failed (") + sym_status_str(st) + "): " + last_error());
+
+    const size_t count = sym_count(result);
+    std::vector<sym_symmetry> syms(count);
+    for (size_t i = 0; i < count; ++i) {
+        syms[i] = sym_symmetry{};
+        syms[i].struct_size = sizeof(sym_symmetry);
+        sym_get_map(result, i, &syms[i]);
+        Log("Symmetry #%d: %s, group %u, order %u, complexity %.3f, region %d of %d vertices", int(i),
+            syms[i].kind == SYM_KIND_GLOBAL ? "global" : "partial", syms[i].group, syms[i].order, syms[i].complexity,
+            int(syms[i].region_size), int(verts.size()));
+    }
+    if (count == 0) Log("No intrinsic symmetry found.");
+
+    const int show = par.getEnum("show");
+    const int index = par.getInt("index");
+    if (show == SHOW_INDEX && (index < 0 || size_t(index) >= count)) {
+        sym_free(result);
+        return fail(QString("index %1 is out of range: %2 symmetries were found.").arg(index).arg(count));
+    }
+    const sym_symmetry *chosen = count == 0 ? nullptr : &syms[show == SHOW_INDEX ? size_t(index) : 0];
+    const double *summary = sym_vertex_symmetry(result);
+
+    mm->updateDataMask(MeshModel::MM_VERTQUALITY | MeshModel::MM_VERTCOLOR);
+    const int colouring = par.getEnum("colouring");
+    vcg::Box3<CMeshO::ScalarType> box = m.bbox;
+    for (size_t i = 0; i < verts.size(); ++i) {
+        const double q = show == SHOW_ALL ? summary[i] : (chosen ? chosen->confidence[i] : 0.0);
+        verts[i]->Q() = CMeshO::ScalarType(q);
+        vcg::Color4b c(150, 150, 150, 255);
+        if (colouring == COLOUR_CORRESPONDENCE && chosen && chosen->map[i] >= 0) {
+            const auto &p = verts[i]->cP();
+            const auto &t = verts[size_t(chosen->map[i])]->cP();
+            for (int k = 0; k < 3; ++k) {
+                const double mid = 0.5 * (double(p[k]) + double(t[k]));
+                const double ext = double(box.max[k] - box.min[k]);
+                const double x = ext > 0 ? (mid - double(box.min[k])) / ext : 0.5;
+                c[k] = (unsigned char)(40.0 + 200.0 * std::fmin(1.0, std::fmax(0.0, x)));
+            }
+        } else if (colouring == COLOUR_GROUPS) {
+            for (size_t s = 0; s < count; ++s) {
+                if (show != SHOW_ALL && &syms[s] != chosen) continue;
+                if (syms[s].map[i] >= 0) {
+                    const unsigned char *g = PALETTE[syms[s].group % 10];
+                    c = vcg::Color4b(g[0], g[1], g[2], 255);
+                    break;
+                }
+            }
+        }
+        verts[i]->C() = c;
+    }
+    if (colouring == COLOUR_QUALITY) vcg::tri::UpdateColor<CMeshO>::PerVertexQualityRamp(m, 0.0f, 1.0f);
+    sym_free(result);
+    return true;
+}
+
+MESHLAB_PLUGIN_NAME_EXPORTER(FilterIntrinsymPlugin)

@@ -1,0 +1,31 @@
+// MeshLab 2020.09 filter plugin: "Intrinsic Symmetry: Detect". A thin layer over the intrinsym
+// C API (include/intrinsym.h): packs the current mesh, calls sym_detect with MeshLab's progress
+// bar as the callback, and writes per-vertex quality and colour.
+#ifndef FILTER_INTRINSYM_H
+#define FILTER_INTRINSYM_H
+
+#include <common/interfaces.h>
+
+class FilterIntrinsymPlugin : public QObject, public MeshFilterInterface
+{
+    Q_OBJECT
+    MESHLAB_PLUGIN_IID_EXPORTER(MESH_FILTER_INTERFACE_IID)
+    Q_INTERFACES(MeshFilterInterface)
+
+public:
+    enum { FP_INTRINSIC_SYMMETRY };
+
+    FilterIntrinsymPlugin();
+
+    QString pluginName() const;
+    QString filterName(FilterIDType filter) const;
+    QString filterInfo(FilterIDType filter) const;
+    FilterClass getClass(QAction *a);
+    FILTER_ARITY filterArity(QAction *) const;
+    int getPreConditions(QAction *) const;
+    int postCondition(QAction *) const;
+    void initParameterSet(QAction *, MeshModel &m, RichParameterList &parlst);
+    bool applyFilter(QAction *action, MeshDocument &md, const RichParameterList &par, vcg::CallBackPos *cb);
+};
+
+#endif

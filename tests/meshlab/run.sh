@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Runs the intrinsym filter in a headless meshlabserver without touching /usr: a copy of
+# Debian's meshlabserver next to a plugins/ folder with Debian's plugins and ours (MeshLab
+# 2020.09 derives its plugin folder from the executable's real path).
+#   run.sh PLUGIN.so WORKDIR INPUT good|bad [TRUTH.txt]
+# good: the filter succeeds and the PLY's colours/quality say that mirror vertices correspond.
+# bad:  the filter fails cleanly: a non-zero exit without a crash signal, the message logged.
+set -euo pipefail
+plugin=$1 work=$2 input=$3 mode=$4 truth=${5:-}
+here=$(cd "$(dirname "$0")" && pwd)
+rm -rf "$work"
+mkdir -p "$work/plugins"
+cp /usr/bin/meshlabserver "$work/"
+for p in /usr/lib/x86_64-linux-gnu/meshlab/plugins/*.so; do ln -s "$p" "$work/plugins/"; done
+cp "$plugin" "$work/plugins/"
+export LD_LIBRARY_PATH=/usr/lib/x86_64-linux-gnu/meshlab
+set +e
+xvfb-run -a "$work/meshlabserver" -i "$input" -o "$work/out.ply" -m vc vq -s "$here/intrinsym.mlx" >"$work/log.txt" 2>&1
+status=$?
+set -e
+echo "meshlabserver exit status: $status"
+if [ "$mode" = good ]; then
+  grep -E "Symmetry #" "$work/log.txt" | head -5 || true
+  [ "$status" -eq 0 ] || { cat "$work/log.txt"; exit 1; }
+  python3 "$here/check_ply.py" "$work/out.ply" $truth
+else
+  grep -iE "no faces|intrinsic" "$work/log.txt" | head -5 || true
+  [ "$status" -ne 0 ] || { echo "the filter should have failed"; exit 1; }
+  # 129..192 is death by a signal; meshlabserver's own failure is exit(-1) = 255.
+  if [ "$status" -gt 128 ] && [ "$status" -le 192 ]; then echo "meshlabserver crashed (signal $((status - 128)))"; cat "$work/log.txt"; exit 1; fi
+  grep -q "has no faces" "$work/log.txt" || { echo "the library's message is not in the log"; cat "$work/log.txt"; exit 1; }
+  echo "failed cleanly with the message logged"
+fi
