@@ -199,7 +199,8 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
     let t = Instant::now();
     let mut eigen = params.eigen.clone();
     eigen.seed = params.seed;
-    eigen.k = eigen.k.min(n);
+    // At least 3 pairs (WKS needs an energy range), at most one per vertex.
+    eigen.k = eigen.k.clamp(3.min(n), n);
     let basis = Eigenbasis::compute_with_progress(mesh, &eigen, &mut |f| progress(0.6 * f))?;
     timings.spectral = t.elapsed().as_secs_f64();
 
