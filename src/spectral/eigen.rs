@@ -9,17 +9,23 @@
 //! - one sparse Cholesky factorization of `L + σM` (faer, supernodal, AMD ordering); each Lanczos
 //!   step is one block triangular solve with `b` right-hand sides, which runs at dense-kernel
 //!   speed where single-vector solves are memory bound;
-//! - **full M-reorthogonalisation** (block classical Gram–Schmidt, applied twice: "twice is
-//!   enough", Giraud et al. 2005) against the whole basis, so the basis stays M-orthonormal to
-//!   machine precision and the projected matrix `H = Vᵀ M Op V` is computed, not assumed;
+//! - **full M-reorthogonalisation**: after the Lanczos recurrence (projection on the previous
+//!   and current block), one block classical Gram–Schmidt pass against the whole basis, repeated
+//!   while it removes a large part of a column (the Daniel–Gragg–Kaufman–Stewart criterion;
+//!   "twice is enough", Giraud et al. 2005), so the basis stays M-orthonormal to machine
+//!   precision and the projected matrix `H = Vᵀ M Op V` is computed, not assumed; each new block
+//!   is orthonormalised by Cholesky QR twice (MGS with random replacement on breakdown);
 //! - **explicit deflation** of the constant mode `u₀ = 1/√area` (λ₀ = 0), projected out of every
 //!   vector, so no Krylov dimension is spent on it and λ₀ is exactly 0;
 //! - **thick restarts** (Wu & Simon 2000; Stewart's Krylov–Schur): when the basis is full, the
 //!   best `p` Ritz vectors and the residual block are kept, with the arrowhead coupling
 //!   `R·S_last` in `H`, and the process continues;
-//! - convergence when every wanted Ritz pair has `‖Op y − θ y‖_M = ‖R S_last,i‖ ≤ tol·θ`;
-//! - a final Rayleigh–Ritz on the original pencil (`Yᵀ L Y`, `Yᵀ M Y`) and a residual check
-//!   `‖Lφ − λMφ‖ / ‖Mφ‖`, reported in [`EigenInfo`]; we never trust an eigensolver blindly.
+//! - convergence on the *original* problem's residual, estimated cheaply from the Ritz residual
+//!   `Op y − θ y = Q R s`: `Lφ − λMφ = −(L + σM) Q R s / θ`, one sparse product with the residual
+//!   block per restart; the tolerance is floored at the attainable `10³ ε ‖L‖∞ n / area`;
+//! - a measured check of every returned pair, `‖Lφ − λMφ‖ / ‖Mφ‖` and `ΦᵀMΦ − I`, reported in
+//!   [`EigenInfo`]; if it misses the tolerance the iteration continues with a 10× tighter
+//!   estimate. We never trust an eigensolver blindly.
 //!
 //! Blocks (size ≥ the largest multiplicity, 7 on a sphere at l = 3) find every copy of a repeated
 //! eigenvalue; a single-vector Lanczos finds later copies only through rounding noise.
