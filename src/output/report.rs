@@ -18,7 +18,7 @@ pub fn svg(det: &Detection, title: &str) -> String {
     let cell = 150.0;
     let rows = n.div_ceil(cols).max(1);
     let width = 40.0 + cols as f64 * (cell + 30.0);
-    let height = 170.0 + rows as f64 * (cell + 45.0);
+    let height = 185.0 + rows as f64 * (cell + 60.0);
     let mut s = String::new();
     let _ = write!(
         s,
@@ -41,16 +41,17 @@ pub fn svg(det: &Detection, title: &str) -> String {
     for (i, sym) in det.symmetries.iter().enumerate() {
         let (r, c) = (i / cols, i % cols);
         let ox = 20.0 + c as f64 * (cell + 30.0);
-        let oy = 150.0 + r as f64 * (cell + 45.0);
+        let oy = 165.0 + r as f64 * (cell + 60.0);
         let k = sym.fmap.nrows().max(1);
         let px = cell / k as f64;
         let amax = (0..sym.fmap.nrows()).flat_map(|a| (0..k).map(move |b| (a, b))).map(|(a, b)| sym.fmap[(a, b)].abs()).fold(1e-12, f64::max);
         let _ = write!(
             s,
-            r#"<text x="{ox}" y="{:.1}">#{i} {} · group {} · order {} · {:.2}</text>"#,
-            oy - 6.0,
+            r#"<text x="{ox}" y="{:.1}">#{i} {} · group {}</text><text x="{ox}" y="{:.1}">order {} · complexity {:.2}</text>"#,
+            oy - 20.0,
             sym.kind.as_str(),
             sym.group,
+            oy - 6.0,
             sym.order,
             sym.complexity
         );
