@@ -7,7 +7,7 @@
 set -euo pipefail
 packages=(cmake make g++ pkg-config python3 valgrind libopenmesh-dev
           meshlab qtbase5-dev libqt5opengl5-dev libglew-dev libeigen3-dev libglu1-mesa-dev
-          xvfb xauth dpkg-dev)
+          xvfb xauth libgl1-mesa-dri dpkg-dev)
 SUDO=""
 [ "$(id -u)" -eq 0 ] || SUDO="sudo"
 export DEBIAN_FRONTEND=noninteractive
