@@ -123,7 +123,7 @@ impl<'a> Context<'a> {
         let n = mesh.num_vertices();
         let stride = (n / params.search_vertices.max(1)).max(1);
         let energies = wks.ncols();
-        let rows = (0..n).flat_map(|v| (0..energies).map(move |e| (v, e))).map(|(v, e)| wks[(v, e)]).collect();
+        let rows = row_major(wks.as_ref(), energies);
         Context { mesh, emb, adjacency: mesh.adjacency(), diameter, search: (0..n).step_by(stride).collect(), wks: rows, energies, basis: None }
     }
 
@@ -167,6 +167,20 @@ fn nearest_profile(dist: impl Fn(usize) -> f64, anchors: usize, k: usize, out: &
         out.select_nth_unstable_by(k - 1, |a, b| a.1.total_cmp(&b.1));
         out.truncate(k);
     }
+}
+
+/// The first `cols` columns of `m` `(n, ≥ cols)` in row-major order (a row's entries
+/// contiguous), for the per-vertex distance evaluations of the descents.
+pub(crate) fn row_major(m: faer::MatRef<'_, f64>, cols: usize) -> Vec<f64> {
+    let n = m.nrows();
+    let mut r = vec![0.0; n * cols];
+    for i in 0..cols {
+        let col = m.col(i);
+        for v in 0..n {
+            r[v * cols + i] = col[v];
+        }
+    }
+    r
 }
 
 /// Greedy descent of `cost` on the mesh graph (CSR `adjacency`) from `start`: moves to the best

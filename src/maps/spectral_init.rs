@@ -83,7 +83,7 @@ pub fn robust_fit(basis: &Eigenbasis, pairs: &[(usize, usize)], k0: usize) -> Ma
 pub fn point_map(basis: &Eigenbasis, adjacency: &(Vec<usize>, Vec<u32>), c: &Mat<f64>, search: &[usize]) -> Vec<usize> {
     let n = basis.num_vertices();
     let k0 = c.nrows();
-    let rows: Vec<f64> = (0..n).flat_map(|v| (0..k0).map(move |i| (v, i))).map(|(v, i)| basis.evecs[(v, i)]).collect();
+    let rows = super::row_major(basis.evecs.as_ref(), k0);
     let dist = |w: usize, t: &[f64]| -> f64 { rows[w * k0..(w + 1) * k0].iter().zip(t).map(|(a, b)| (a - b) * (a - b)).sum() };
     let nbrs = |w: usize| &adjacency.1[adjacency.0[w]..adjacency.0[w + 1]];
     let mut target = vec![0.0; k0];

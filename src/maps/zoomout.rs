@@ -27,16 +27,7 @@ pub fn zoomout(basis: &Eigenbasis, adjacency: &(Vec<usize>, Vec<u32>), map: &mut
     let kmax = k1.min(basis.k());
     let mut k = k0.min(kmax).max(1);
     // Row-major Φ (one vertex's coefficients contiguous) for the descent, and M Φ for C.
-    let rows: Vec<f64> = {
-        let mut r = vec![0.0; n * kmax];
-        for i in 0..kmax {
-            let col = basis.evecs.col(i);
-            for v in 0..n {
-                r[v * kmax + i] = col[v];
-            }
-        }
-        r
-    };
+    let rows = super::row_major(basis.evecs.as_ref(), kmax);
     // The subset (all vertices on small meshes) and its mass, scaled to the whole surface.
     let stride = if n > 2 * SUBSAMPLE { n.div_ceil(SUBSAMPLE) } else { 1 };
     let sub: Vec<usize> = (0..n).step_by(stride).collect();
