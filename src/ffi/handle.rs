@@ -9,7 +9,7 @@ use std::ffi::{c_char, c_int, c_void};
 use std::sync::{Mutex, OnceLock};
 
 use super::boundary::{guard, guard_value, last_error, set_error};
-use super::status::{from_error, from_mesh_error, sym_status};
+use super::status::{from_error, sym_status};
 use crate::detect::{detect, Detection, Kind, Params};
 use crate::mesh::{ComponentPolicy, Mesh, MeshParams};
 
@@ -273,7 +273,10 @@ pub unsafe extern "C" fn sym_detect(
         // SAFETY: non-NULL, lengths bounded above, and the caller guarantees the extent.
         let v = unsafe { std::slice::from_raw_parts(vertices, 3 * num_vertices) };
         let t = unsafe { std::slice::from_raw_parts(triangles, 3 * num_triangles) };
-        let mesh = Mesh::from_slices(v, t, &mesh_params).map_err(|e| (from_mesh_error(&e), format!("invalid mesh: {e}")))?;
+        let mesh = Mesh::from_slices(v, t, &mesh_params).map_err(|e| {
+            let e = crate::Error::from(e);
+            (from_error(&e), e.to_string())
+        })?;
         let mut report = |f: f64| match progress {
             // SAFETY: the caller provides a valid function pointer and its user data.
             Some(cb) => unsafe { cb(f as f32, user_data) != 0 },

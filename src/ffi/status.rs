@@ -1,6 +1,5 @@
 //! Status codes and their mapping from [`crate::Error`].
 
-use crate::mesh::MeshError;
 use crate::spectral::SpectralError;
 use crate::Error;
 
@@ -36,11 +35,6 @@ pub(crate) fn from_error(e: &Error) -> sym_status {
         #[allow(unreachable_patterns)]
         _ => sym_status::SYM_STATUS_PANIC,
     }
-}
-
-/// Maps a mesh error (validation at the boundary) to its status.
-pub(crate) fn from_mesh_error(_: &MeshError) -> sym_status {
-    sym_status::SYM_STATUS_INVALID_MESH
 }
 
 /// A static, NUL-terminated description of `status` (never NULL; unknown values give
