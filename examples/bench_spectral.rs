@@ -24,7 +24,6 @@ fn main() {
     let args: Vec<String> = std::env::args().collect();
     let s: usize = args.get(1).and_then(|a| a.parse().ok()).unwrap_or(129);
     let k: usize = args.get(2).and_then(|a| a.parse().ok()).unwrap_or(100);
-    let block: usize = std::env::var("BLOCK").ok().and_then(|b| b.parse().ok()).unwrap_or(8);
     let factor: f64 = std::env::var("BASIS").ok().and_then(|b| b.parse().ok()).unwrap_or(2.0);
     let mesh = shapes::bumpy_torus(s);
     if let Some(dir) = args.get(3) {
@@ -39,7 +38,6 @@ fn main() {
     }
     let mut params = EigenParams::default();
     params.k = k;
-    params.block = block;
     params.basis_factor = factor;
     if let Some(t) = std::env::var("TOL").ok().and_then(|b| b.parse().ok()) {
         params.tol = t;

@@ -7,8 +7,10 @@
 //! process on `Op` (Golub & Underwood 1977) with
 //!
 //! - one sparse Cholesky factorization of `L + σM` (faer, supernodal, AMD ordering); each Lanczos
-//!   step is one block triangular solve with `b` right-hand sides, which runs at dense-kernel
-//!   speed where single-vector solves are memory bound;
+//!   step is one block solve with `b = 8` interleaved right-hand sides ([`super::factor`]), where
+//!   single-vector solves would be memory bound;
+//! - the block lives interleaved (row `r` = entry `r` of the 8 vectors) while it is built, so the
+//!   products with the tall basis stream it once without packing ([`super::kernels`]);
 //! - **full M-reorthogonalisation**: after the Lanczos recurrence (projection on the previous
 //!   and current block), one block classical Gram–Schmidt pass against the whole basis, repeated
 //!   while it removes a large part of a column (the Daniel–Gragg–Kaufman–Stewart criterion;
@@ -34,13 +36,13 @@
 //! symmetric eigensolver on `M^{-1/2} L M^{-1/2}` instead, which is exact and faster there.
 
 use faer::linalg::matmul::matmul;
-use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
-use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
-use faer::reborrow::{Reborrow, ReborrowMut};
+use faer::reborrow::ReborrowMut;
 use faer::{Accum, Mat, MatMut, MatRef, Par, Side};
 use sprs::CsMat;
 use std::time::Instant;
 
+use super::factor::ShiftedCholesky;
+use super::kernels::{self, Lanes, LANES};
 use super::SpectralError;
 
 /// Below this many vertices the dense solver is used (Lanczos is faster above ~300 vertices, and
@@ -56,8 +58,6 @@ pub struct EigenParams {
     /// Shift σ, in units of `4π / area` (the first nonzero eigenvalue of a sphere is 2 in those
     /// units). Default 0.01: small enough to separate the low spectrum, far from singular.
     pub shift: f64,
-    /// Lanczos block size (default 8).
-    pub block: usize,
     /// Krylov basis size as a multiple of the number of wanted pairs (default 2.5, at least k + 3 blocks).
     pub basis_factor: f64,
     /// Residual tolerance: stop when every pair's estimated `‖Lφ − λMφ‖ / ‖Mφ‖` is below
@@ -87,7 +87,7 @@ pub enum Solver {
 
 impl Default for EigenParams {
     fn default() -> Self {
-        EigenParams { k: 100, shift: 0.01, block: 8, basis_factor: 2.5, tol: 1e-10, max_restarts: 200, seed: 0, solver: Solver::Auto }
+        EigenParams { k: 100, shift: 0.01, basis_factor: 2.5, tol: 1e-10, max_restarts: 200, seed: 0, solver: Solver::Auto }
     }
 }
 
@@ -144,7 +144,7 @@ pub fn eigen(
     let area: f64 = mass.iter().sum();
     let sigma = params.shift * 4.0 * std::f64::consts::PI / area;
     let nev = k - 1; // non-constant pairs
-    let b = params.block.max(1);
+    let b = LANES;
     let ncv = ((params.basis_factor * nev as f64).ceil() as usize).max(nev + 3 * b);
     let ncv = ncv.div_ceil(b) * b;
     let small = n <= DENSE_LIMIT && params.solver == Solver::Auto;
@@ -152,15 +152,9 @@ pub fn eigen(
         return dense_eigen(lap, mass, k);
     }
 
-    // Factorize L + σM (lower triangle suffices; we pass the full symmetric matrix).
+    // Factorize L + σM.
     let t0 = Instant::now();
-    let shifted = shifted_matrix(lap, mass, sigma);
-    let (col_ptr, row_idx, values) = (&shifted.0, &shifted.1, &shifted.2);
-    let symbolic = SymbolicSparseColMatRef::new_checked(n, n, col_ptr, None, row_idx);
-    let A = SparseColMatRef::new(symbolic, values);
-    let sym = SymbolicLlt::try_new(symbolic, Side::Lower).map_err(|e| SpectralError::Factorization(format!("{e:?}")))?;
-    let llt = Llt::try_new_with_symbolic(sym, A, Side::Lower)
-        .map_err(|e| SpectralError::Factorization(format!("{e:?} (is the Laplacian positive semi-definite?)")))?;
+    let factor = ShiftedCholesky::new(lap, mass, sigma)?;
     let factor_seconds = t0.elapsed().as_secs_f64();
     let t1 = Instant::now();
 
@@ -192,8 +186,10 @@ pub fn eigen(
     let mut info = EigenInfo { shift: sigma, basis: ncv, factor_seconds, ..Default::default() };
     let mut nv = b; // columns in the basis; the last block is "open" (Op not yet applied)
     let mut restart_start = 0; // first open block after a (re)start
-    let mut W = Mat::<f64>::zeros(n, b);
-    let mut tmp = Mat::<f64>::zeros(cap, b);
+    // The block being built, interleaved (row r holds entry r of the b vectors), and scratch.
+    let mut W: Vec<Lanes> = vec![[0.0; LANES]; n];
+    let mut coeff: Vec<Lanes> = vec![[0.0; LANES]; cap];
+    let mut scratch = Scratch::default();
     let mut R_last = Mat::<f64>::zeros(b, b);
     let mut converged_best = 0;
     let mut tol = params.tol;
@@ -203,39 +199,52 @@ pub fn eigen(
         while nv - b < ncv {
             let j0 = nv - b;
             // W = Op V_j = (L + σM)⁻¹ M V_j, deflated.
-            for c in 0..b {
-                let src = V.col_as_slice(j0 + c);
-                for ((w, &x), &m) in W.col_as_slice_mut(c).iter_mut().zip(src).zip(mass) {
-                    *w = m * x;
+            for t in 0..b {
+                for ((w, &x), &m) in W.iter_mut().zip(V.col_as_slice(j0 + t)).zip(mass) {
+                    w[t] = m * x;
                 }
             }
             let ts = Instant::now();
-            faer::linalg::solvers::Solve::solve_in_place(&llt, W.as_mut());
+            factor.solve(&mut W, &mut scratch.solve);
             info.solves += b;
             info.triangular_seconds += ts.elapsed().as_secs_f64();
             let ts = Instant::now();
-            ws.deflate(W.as_mut());
+            ws.deflate_lanes(&mut W);
             // Orthogonalisation: first the Lanczos recurrence (the previous and current block;
             // after a restart, everything kept), then a full block classical Gram–Schmidt pass
             // against the whole basis, repeated when it removed a large part of a column
             // (Daniel–Gragg–Kaufman–Stewart criterion): full reorthogonalisation at the price of
             // about one pass.
-            let mut coeff = tmp.as_mut().subrows_mut(0, nv);
-            coeff.fill(0.0);
+            let coeff = &mut coeff[..nv];
+            coeff.fill([0.0; LANES]);
             let lo = if j0 == restart_start { 0 } else { j0 - b };
-            project_out(V.as_ref().subcols(lo, nv - lo), W.as_mut(), mass, coeff.rb_mut().subrows_mut(lo, nv - lo));
+            project_out(V.as_ref().subcols(lo, nv - lo), &mut W, mass, &mut coeff[lo..], &mut scratch);
             for _pass in 0..3 {
-                let before = col_norms(W.as_ref(), mass);
-                project_out(V.as_ref().subcols(0, nv), W.as_mut(), mass, coeff.rb_mut());
-                let after = col_norms(W.as_ref(), mass);
-                if before.iter().zip(&after).all(|(b, a)| *a > 0.7 * b) {
+                let before = kernels::m_dots(&W, &W, mass);
+                project_out(V.as_ref().subcols(0, nv), &mut W, mass, coeff, &mut scratch);
+                let after = kernels::m_dots(&W, &W, mass);
+                // Squared norms: ‖after‖ > 0.7 ‖before‖.
+                if before.iter().zip(&after).all(|(b, a)| *a > 0.49 * b) {
                     break;
                 }
             }
-            H.as_mut().submatrix_mut(0, j0, nv, b).copy_from(coeff.rb());
-            // Orthonormalize W within itself: W = Q R; Q is the next block.
-            V.as_mut().subcols_mut(nv, b).copy_from(W.as_ref());
-            let R = ws.orthonormalize_block(&mut V, nv, b, &mut rng);
+            for (i, c) in coeff.iter().enumerate() {
+                for t in 0..b {
+                    H[(i, j0 + t)] = c[t];
+                }
+            }
+            // W = Q R: Cholesky QR twice on the interleaved block; the column-wise path
+            // (with breakdown handling) when the block is nearly rank deficient.
+            let R = match ws.cholqr2_lanes(&mut W) {
+                Some(R) => {
+                    scatter(&W, &mut V, nv);
+                    R
+                }
+                None => {
+                    scatter(&W, &mut V, nv);
+                    ws.orthonormalize_block(&mut V, nv, b, &mut rng)
+                }
+            };
             H.as_mut().submatrix_mut(nv, j0, b, b).copy_from(R.as_ref());
             R_last.copy_from(R.as_ref());
             info.orthogonalize_seconds += ts.elapsed().as_secs_f64();
@@ -326,39 +335,6 @@ fn progress_estimate(converged: usize, nev: usize, nv: usize, ncv: usize) -> f64
     ((converged as f64 + fill) / (nev as f64 + 1.0)).clamp(0.0, 0.99)
 }
 
-/// CSC arrays of `L + σM` (full symmetric pattern, sorted row indices).
-fn shifted_matrix(lap: &CsMat<f64>, mass: &[f64], sigma: f64) -> (Vec<usize>, Vec<usize>, Vec<f64>) {
-    let n = mass.len();
-    let mut col_ptr = Vec::with_capacity(n + 1);
-    let mut rows = Vec::with_capacity(lap.nnz() + n);
-    let mut vals = Vec::with_capacity(lap.nnz() + n);
-    col_ptr.push(0);
-    for (j, col) in lap.outer_iterator().enumerate() {
-        let mut diag_seen = false;
-        for (i, &x) in col.iter() {
-            if i == j {
-                diag_seen = true;
-                rows.push(i);
-                vals.push(x + sigma * mass[j]);
-            } else {
-                if i > j && !diag_seen {
-                    rows.push(j);
-                    vals.push(sigma * mass[j]);
-                    diag_seen = true;
-                }
-                rows.push(i);
-                vals.push(x);
-            }
-        }
-        if !diag_seen {
-            rows.push(j);
-            vals.push(sigma * mass[j]);
-        }
-        col_ptr.push(rows.len());
-    }
-    (col_ptr, rows, vals)
-}
-
 struct Workspace<'a> {
     mass: &'a [f64],
     u0: f64,
@@ -378,6 +354,57 @@ impl Workspace<'_> {
                 col[i] -= c;
             }
         }
+    }
+
+    /// The same for an interleaved block.
+    fn deflate_lanes(&self, x: &mut [Lanes]) {
+        let mut dot = [0.0; LANES];
+        for (row, &m) in x.iter().zip(self.mass) {
+            for t in 0..LANES {
+                dot[t] += m * row[t];
+            }
+        }
+        let c = dot.map(|d| d * self.u0 * self.u0);
+        for row in x.iter_mut() {
+            for t in 0..LANES {
+                row[t] -= c[t];
+            }
+        }
+    }
+
+    /// Cholesky QR twice on an interleaved block (see [`Self::orthonormalize_block`]):
+    /// `W ← Q` with `W = Q R`, `R` returned; `None` (and `W` unchanged) when the Gram matrix is
+    /// too ill-conditioned for it.
+    fn cholqr2_lanes(&self, w: &mut [Lanes]) -> Option<Mat<f64>> {
+        let b = LANES;
+        let original = w.to_vec();
+        let mut r_total = Mat::<f64>::identity(b, b);
+        for _pass in 0..2 {
+            let gram = kernels::m_gram(w, self.mass);
+            let g = Mat::<f64>::from_fn(b, b, |i, j| gram[i][j]);
+            let diag_max = (0..b).map(|i| g[(i, i)]).fold(0.0f64, f64::max);
+            let l = match g.llt(Side::Lower) {
+                Ok(c) => c.L().to_owned(),
+                Err(_) => {
+                    w.copy_from_slice(&original);
+                    return None;
+                }
+            };
+            let (lo, hi) = (0..b).fold((f64::INFINITY, 0.0f64), |(lo, hi), i| (lo.min(l[(i, i)]), hi.max(l[(i, i)])));
+            if !(diag_max > 0.0 && lo > 1e-6 * hi) {
+                w.copy_from_slice(&original);
+                return None;
+            }
+            // Q = W L⁻ᵀ: each row q = L⁻¹ w, i.e. q = Σ_s w[s] · (column s of L⁻¹).
+            let mut inv = Mat::<f64>::identity(b, b);
+            faer::linalg::triangular_solve::solve_lower_triangular_in_place(l.as_ref(), inv.as_mut(), Par::Seq);
+            let cols: Vec<Lanes> = (0..b).map(|s| std::array::from_fn(|t| inv[(t, s)])).collect();
+            kernels::mul_rows(w, &cols);
+            let mut next = Mat::<f64>::zeros(b, b);
+            matmul(next.as_mut(), Accum::Replace, l.transpose(), r_total.as_ref(), 1.0, Par::Seq);
+            r_total = next;
+        }
+        Some(r_total)
     }
 
     /// M-orthonormalizes columns `j0..j0+b` of `v` in place and returns the `(b, b)`
@@ -451,12 +478,11 @@ impl Workspace<'_> {
                     *x = rng.normal();
                 }
                 for _pass in 0..2 {
-                    let mut one = Mat::<f64>::zeros(v.nrows(), 1);
-                    one.col_as_slice_mut(0).copy_from_slice(v.col_as_slice(j));
-                    self.deflate(one.as_mut());
-                    let mut coeff = Mat::<f64>::zeros(j, 1);
-                    project_out(v.as_ref().subcols(0, j), one.as_mut(), mass, coeff.as_mut());
-                    v.col_as_slice_mut(j).copy_from_slice(one.col_as_slice(0));
+                    self.deflate(v.as_mut().subcols_mut(j, 1));
+                    for q in 0..j {
+                        let d = m_dot(v.col_as_slice(q), v.col_as_slice(j), mass);
+                        axpy_cols(v, j, q, -d);
+                    }
                 }
                 nrm = m_norm(v.col_as_slice(j), mass);
                 for x in v.col_as_slice_mut(j) {
@@ -473,49 +499,41 @@ impl Workspace<'_> {
     }
 }
 
-/// W ← W − V (Vᵀ M W), accumulating the coefficients into `coeff` `(V.ncols(), W.ncols())`.
-///
-/// The projection is memory bound (V is tall, W has few columns): both products run over
-/// bands of rows so that gemm's packed copy of V stays in cache and V streams from memory once
-/// per product.
-fn project_out(v: MatRef<'_, f64>, mut w: MatMut<'_, f64>, mass: &[f64], mut coeff: MatMut<'_, f64>) {
-    let (n, nv, b) = (v.nrows(), v.ncols(), w.ncols());
-    if nv == 0 {
+/// Columns `j0 .. j0 + LANES` of `v` ← the interleaved block `w`.
+fn scatter(w: &[Lanes], v: &mut Mat<f64>, j0: usize) {
+    for t in 0..LANES {
+        for (x, row) in v.col_as_slice_mut(j0 + t).iter_mut().zip(w) {
+            *x = row[t];
+        }
+    }
+}
+
+/// Reused buffers of the iteration.
+#[derive(Default)]
+struct Scratch {
+    solve: Vec<Lanes>,
+    mw: Vec<Lanes>,
+    c: Vec<Lanes>,
+}
+
+/// W ← W − V (Vᵀ M W) for an interleaved block `w`, accumulating the coefficients into `coeff`
+/// (`V.ncols()` rows). Two streaming passes over `V` ([`kernels::gram`], [`kernels::update`]).
+fn project_out(v: MatRef<'_, f64>, w: &mut [Lanes], mass: &[f64], coeff: &mut [Lanes], scratch: &mut Scratch) {
+    if v.ncols() == 0 {
         return;
     }
-    let mut mw = Mat::<f64>::zeros(n, b);
-    for j in 0..b {
-        for ((y, x), m) in mw.col_as_slice_mut(j).iter_mut().zip(slice(w.rb(), j)).zip(mass) {
-            *y = m * x;
-        }
-    }
-    let mut c = Mat::<f64>::zeros(nv, b);
-    let mut r0 = 0;
-    while r0 < n {
-        let h = BAND.min(n - r0);
-        matmul(c.as_mut(), Accum::Add, v.subrows(r0, h).transpose(), mw.as_ref().subrows(r0, h), 1.0, Par::Seq);
-        r0 += h;
-    }
-    let mut r0 = 0;
-    while r0 < n {
-        let h = BAND.min(n - r0);
-        matmul(w.rb_mut().subrows_mut(r0, h), Accum::Add, v.subrows(r0, h), c.as_ref(), -1.0, Par::Seq);
-        r0 += h;
-    }
-    for j in 0..b {
-        for i in 0..nv {
-            coeff[(i, j)] += c[(i, j)];
+    kernels::scale_rows(w, mass, &mut scratch.mw);
+    scratch.c.clear();
+    scratch.c.resize(v.ncols(), [0.0; LANES]);
+    kernels::gram(v, &scratch.mw, &mut scratch.c);
+    kernels::update(v, w, &scratch.c);
+    for (acc, c) in coeff.iter_mut().zip(&scratch.c) {
+        for t in 0..LANES {
+            acc[t] += c[t];
         }
     }
 }
 
-/// Rows per band in the tall-skinny products (band × basis fits in L2).
-const BAND: usize = 128;
-
-/// Column `j` of a column-major matrix as a slice.
-fn slice(m: MatRef<'_, f64>, j: usize) -> &[f64] {
-    m.col(j).try_as_col_major().expect("column-major").as_slice()
-}
 
 
 /// `V[:, 0..p] ← V[:, 0..m] S` `(m, p)`, in place, a band of rows at a time.
@@ -530,16 +548,6 @@ fn rotate_in_place(v: &mut Mat<f64>, m: usize, s: MatRef<'_, f64>) {
         v.as_mut().submatrix_mut(r0, 0, h, p).copy_from(buf.as_ref().subrows(0, h));
         r0 += h;
     }
-}
-
-/// M-norms of the columns of `w`.
-fn col_norms(w: MatRef<'_, f64>, mass: &[f64]) -> Vec<f64> {
-    (0..w.ncols())
-        .map(|j| {
-            let c = slice(w, j);
-            c.iter().zip(mass).map(|(x, m)| m * x * x).sum::<f64>().sqrt()
-        })
-        .collect()
 }
 
 fn m_dot(x: &[f64], y: &[f64], mass: &[f64]) -> f64 {

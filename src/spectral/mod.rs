@@ -11,6 +11,8 @@
 
 pub mod cotan;
 pub mod eigen;
+pub mod factor;
+mod kernels;
 pub mod mass;
 
 pub use eigen::{EigenInfo, EigenParams, Solver};
