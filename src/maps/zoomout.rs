@@ -43,11 +43,14 @@ pub fn zoomout(basis: &Eigenbasis, adjacency: &(Vec<usize>, Vec<u32>), map: &mut
     let dist = |w: usize, target: &[f64]| -> f64 {
         rows[w * kmax..w * kmax + target.len()].iter().zip(target).map(|(a, b)| (a - b) * (a - b)).sum()
     };
-    // Target of vertex v: Φ_k(v) C_k.
-    let target_of = |v: usize, c: &Mat<f64>, out: &mut Vec<f64>| {
+    // Targets Φ_k(v) C_k of the vertices `vs`, one gemm: column r of `(C_kᵀ Φ_k(vs)ᵀ)` is the
+    // target of vs[r], contiguous for the descent.
+    let targets = |vs: &[usize], c: &Mat<f64>| -> Mat<f64> {
         let k = c.nrows();
-        out.clear();
-        out.extend((0..k).map(|q| (0..k).map(|p| rows[v * kmax + p] * c[(p, q)]).sum::<f64>()));
+        let phi = Mat::<f64>::from_fn(k, vs.len(), |p, r| rows[vs[r] * kmax + p]);
+        let mut t = Mat::<f64>::zeros(k, vs.len());
+        faer::linalg::matmul::matmul(t.as_mut(), Accum::Replace, c.transpose(), phi.as_ref(), 1.0, Par::Seq);
+        t
     };
     loop {
         // C_k = (M Φ_k)ᵀ Φ_k[T] over the subset.
@@ -59,13 +62,15 @@ pub fn zoomout(basis: &Eigenbasis, adjacency: &(Vec<usize>, Vec<u32>), map: &mut
         }
         let mut c = Mat::<f64>::zeros(k, k);
         faer::linalg::matmul::matmul(c.as_mut(), Accum::Replace, mphi.as_ref().subcols(0, k).transpose(), phit.as_ref(), 1.0, Par::Seq);
-        let mut target = Vec::with_capacity(k);
-        for &v in &sub {
-            target_of(v, &c, &mut target);
-            map[v] = super::greedy_descent(adjacency, map[v], |u| dist(u, &target)).0;
+        let t = targets(&sub, &c);
+        for (r, &v) in sub.iter().enumerate() {
+            let target = t.col_as_slice(r);
+            map[v] = super::greedy_descent(adjacency, map[v], |u| dist(u, target)).0;
         }
         if k >= kmax && sub.len() < n {
             // Last iteration on a large mesh: every other vertex, breadth-first from the subset.
+            let all: Vec<usize> = (0..n).collect();
+            let t = targets(&all, &c);
             let mut done = vec![false; n];
             let mut queue = std::collections::VecDeque::new();
             for &v in &sub {
@@ -79,9 +84,9 @@ pub fn zoomout(basis: &Eigenbasis, adjacency: &(Vec<usize>, Vec<u32>), map: &mut
                         continue;
                     }
                     done[u] = true;
-                    target_of(u, &c, &mut target);
-                    let start = if dist(map[v], &target) < dist(map[u], &target) { map[v] } else { map[u] };
-                    map[u] = super::greedy_descent(adjacency, start, |w| dist(w, &target)).0;
+                    let target = t.col_as_slice(u);
+                    let start = if dist(map[v], target) < dist(map[u], target) { map[v] } else { map[u] };
+                    map[u] = super::greedy_descent(adjacency, start, |w| dist(w, target)).0;
                     queue.push_back(u);
                 }
             }

@@ -136,6 +136,9 @@ pub fn vote(
     // The paper's second criterion: for an involution T (T x = x', T y = y'), d(x, y') = d(x', y).
     let consistent_involution =
         |p: (usize, usize), q: (usize, usize)| consistent(p, q) && (dist[(p.0, q.1)] - dist[(p.1, q.0)]).abs() < eps;
+    // Both relations between all good pairs, as bit rows: growth only adds rows.
+    let general = BitRows::new(good_pairs, |a, b| consistent(pairs[a], pairs[b]));
+    let involutive = BitRows::new(good_pairs, |a, b| consistent_involution(pairs[a], pairs[b]));
     // Votes (paper §4.3): both criteria, both orientations of the voter.
     let votes: Vec<usize> = pairs[..good_pairs]
         .iter()
@@ -185,12 +188,12 @@ pub fn vote(
             // (first criterion; rotations). Identical results are merged below.
             for involution in [true, false] {
                 let members = if involution {
-                    if !consistent_involution(p, q) {
+                    if !involutive.get(pi, qi) {
                         continue;
                     }
-                    grow(&pairs, vec![p, q], &consistent_involution, params.consistency, ns)
+                    grow(&pairs, vec![pi, qi], &involutive, params.consistency, ns)
                 } else {
-                    grow(&pairs, vec![p, q], &consistent, params.consistency, ns)
+                    grow(&pairs, vec![pi, qi], &general, params.consistency, ns)
                 };
                 if members.len() >= params.min_pairs {
                     let mut sorted = members;
@@ -205,22 +208,55 @@ pub fn vote(
     (merged, VotingInfo { good_pairs, eps, diameter, grown: grown_count }, dist)
 }
 
-/// Greedy growth of an injective set of mutually consistent directed pairs.
-fn grow(
-    pairs: &[(usize, usize)],
-    mut members: Vec<(usize, usize)>,
-    consistent: &dyn Fn((usize, usize), (usize, usize)) -> bool,
-    fraction: f64,
-    ns: usize,
-) -> Vec<(usize, usize)> {
+/// A symmetric relation on `len` items as rows of bits.
+struct BitRows {
+    words: usize,
+    bits: Vec<u64>,
+}
+
+impl BitRows {
+    fn new(len: usize, related: impl Fn(usize, usize) -> bool) -> BitRows {
+        let words = len.div_ceil(64);
+        let mut bits = vec![0u64; len * words];
+        for a in 0..len {
+            for b in 0..=a {
+                if related(a, b) {
+                    bits[a * words + b / 64] |= 1 << (b % 64);
+                    bits[b * words + a / 64] |= 1 << (a % 64);
+                }
+            }
+        }
+        BitRows { words, bits }
+    }
+
+    fn get(&self, a: usize, b: usize) -> bool {
+        self.bits[a * self.words + b / 64] >> (b % 64) & 1 == 1
+    }
+
+    /// Adds 1 to `count[b]` for every `b` related to `a`.
+    fn add_row(&self, a: usize, count: &mut [usize]) {
+        for (w, &word) in self.bits[a * self.words..(a + 1) * self.words].iter().enumerate() {
+            let mut x = word;
+            while x != 0 {
+                count[w * 64 + x.trailing_zeros() as usize] += 1;
+                x &= x - 1;
+            }
+        }
+    }
+}
+
+/// Greedy growth of an injective set of mutually consistent directed pairs (indices into
+/// `pairs`; `consistent` relates them).
+fn grow(pairs: &[(usize, usize)], mut members: Vec<usize>, consistent: &BitRows, fraction: f64, ns: usize) -> Vec<(usize, usize)> {
     let mut src_used = vec![false; ns];
     let mut dst_used = vec![false; ns];
-    for &(a, b) in &members {
-        src_used[a] = true;
-        dst_used[b] = true;
-    }
     // count[r] = members consistent with pair r.
-    let mut count: Vec<usize> = pairs.iter().map(|&r| members.iter().filter(|&&m| consistent(m, r)).count()).collect();
+    let mut count = vec![0usize; pairs.len()];
+    for &m in &members {
+        src_used[pairs[m].0] = true;
+        dst_used[pairs[m].1] = true;
+        consistent.add_row(m, &mut count);
+    }
     loop {
         let need = ((fraction * members.len() as f64).ceil() as usize).max(2);
         let mut best: Option<usize> = None;
@@ -238,17 +274,12 @@ fn grow(
             }
         }
         let Some(bi) = best else { break };
-        let r = pairs[bi];
-        members.push(r);
-        src_used[r.0] = true;
-        dst_used[r.1] = true;
-        for (ri, &q) in pairs.iter().enumerate() {
-            if consistent(r, q) {
-                count[ri] += 1;
-            }
-        }
+        members.push(bi);
+        src_used[pairs[bi].0] = true;
+        dst_used[pairs[bi].1] = true;
+        consistent.add_row(bi, &mut count);
     }
-    members
+    members.into_iter().map(|m| pairs[m]).collect()
 }
 
 /// Merges candidates that are the same symmetry: on the sources both map, at least half of
