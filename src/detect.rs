@@ -188,6 +188,28 @@ impl Detection {
     }
 }
 
+/// `f` applied to every item, on up to `available_parallelism` threads (independent work; each
+/// kernel stays single-threaded), results in item order.
+fn parallel_map<T: Sync, R: Send>(items: &[T], f: impl Fn(&T) -> R + Sync) -> Vec<R> {
+    let threads = std::thread::available_parallelism().map_or(1, |t| t.get()).min(items.len());
+    if threads <= 1 {
+        return items.iter().map(f).collect();
+    }
+    let f = &f;
+    let mut out: Vec<Option<R>> = (0..items.len()).map(|_| None).collect();
+    std::thread::scope(|scope| {
+        let handles: Vec<_> = (0..threads)
+            .map(|t| scope.spawn(move || items.iter().enumerate().skip(t).step_by(threads).map(|(i, x)| (i, f(x))).collect::<Vec<_>>()))
+            .collect();
+        for h in handles {
+            for (i, r) in h.join().unwrap_or_else(|e| std::panic::resume_unwind(e)) {
+                out[i] = Some(r);
+            }
+        }
+    });
+    out.into_iter().map(|r| r.expect("every item mapped")).collect()
+}
+
 /// Runs the pipeline; `progress(fraction)` returning `false` cancels with
 /// [`crate::spectral::SpectralError::Cancelled`].
 pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool) -> Result<Detection, Error> {
@@ -241,18 +263,22 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
     ranked.truncate(params.max_candidates);
     // Phase 1: a profile map per candidate, ranked by quality (region, then distortion), so
     // the best version of each symmetry is refined first and absorbs its variants.
-    let mut profiled: Vec<(maps::DenseMap, (usize, usize), f64)> = Vec::new();
-    for (ci, cand) in ranked.iter().enumerate() {
-        if !progress(0.65 + 0.15 * ci as f64 / ranked.len().max(1) as f64) {
-            return Err(cancelled());
-        }
+    // Candidates are independent: their profile maps are computed on all cores.
+    if !progress(0.66) {
+        return Err(cancelled());
+    }
+    let profile = |cand: &&crate::voting::Candidate| {
         let anchors: Vec<(usize, usize)> = cand.pairs.iter().map(|&(a, b)| (probes[a], probes[b])).collect();
-        let Some(dense) = maps::profile_map(&ctx, &anchors, probes, vinfo.eps, &params.maps) else { continue };
+        let dense = maps::profile_map(&ctx, &anchors, probes, vinfo.eps, &params.maps)?;
         if characterize::displacement(&dense.map, probes, &emb, vinfo.diameter) < params.min_displacement {
-            continue;
+            return None;
         }
         let distortion = characterize::sample_distortion(&dense.map, probes, &emb, vinfo.diameter);
-        profiled.push((dense, anchors[0], distortion));
+        Some((dense, anchors[0], distortion))
+    };
+    let mut profiled: Vec<(maps::DenseMap, (usize, usize), f64)> = parallel_map(&ranked, profile).into_iter().flatten().collect();
+    if !progress(0.8) {
+        return Err(cancelled());
     }
     let score = |m: &maps::DenseMap, distortion: f64| m.region_size as f64 / n as f64 - 10.0 * distortion;
     profiled.sort_by(|a, b| score(&b.0, b.2).total_cmp(&score(&a.0, a.2)));
@@ -269,7 +295,13 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
     let total = profiled.len().max(1);
     let mut refinements = 0;
     let mut fruitless = 0;
-    for (pi, (mut dense, seed, _)) in profiled.into_iter().enumerate() {
+    // A refinement computed ahead of its turn, alongside the current one (speculation on the
+    // second core: refine only depends on the map, so the result is the sequential one).
+    let mut ahead: Option<(usize, maps::DenseMap)> = None;
+    let skip = |dense: &maps::DenseMap, found: &[Found]| same_as(dense, found, 0.8).is_some_and(|i| found[i].dense.refined);
+    let parallel = std::thread::available_parallelism().map_or(1, |t| t.get()) > 1;
+    for pi in 0..profiled.len() {
+        let (mut dense, seed) = (profiled[pi].0.clone(), profiled[pi].1);
         if !progress(0.8 + 0.15 * pi as f64 / total as f64) {
             return Err(cancelled());
         }
@@ -277,7 +309,7 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
             break;
         }
         // Nearly the same as a refined map: refining it again would only reproduce that map.
-        if same_as(&dense, &found, 0.8).is_some_and(|i| found[i].dense.refined) {
+        if skip(&dense, &found) {
             continue;
         }
         if maps::refinable(&ctx, &dense, &params.maps) {
@@ -287,7 +319,25 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
             refinements += 1;
             // Counted as fruitless until it turns out to be a new symmetry (below).
             fruitless += 1;
-            dense = maps::refine(&ctx, &dense, probes, &params.maps);
+            dense = match ahead.take() {
+                Some((j, refined)) if j == pi => refined,
+                other => {
+                    ahead = other;
+                    // The next candidate that would be refined if this one adds nothing new.
+                    let next = (parallel && ahead.is_none() && refinements < params.max_refinements && fruitless < params.patience)
+                        .then(|| (pi + 1..profiled.len()).find(|&j| maps::refinable(&ctx, &profiled[j].0, &params.maps) && !skip(&profiled[j].0, &found)))
+                        .flatten();
+                    match next {
+                        Some(j) => std::thread::scope(|scope| {
+                            let h = scope.spawn(|| maps::refine(&ctx, &profiled[j].0, probes, &params.maps));
+                            let refined = maps::refine(&ctx, &dense, probes, &params.maps);
+                            ahead = Some((j, h.join().unwrap_or_else(|e| std::panic::resume_unwind(e))));
+                            refined
+                        }),
+                        None => maps::refine(&ctx, &dense, probes, &params.maps),
+                    }
+                }
+            };
             // Refinement can slide a poor candidate into the identity.
             if characterize::displacement(&dense.map, probes, &emb, vinfo.diameter) < params.min_displacement {
                 continue;

@@ -53,7 +53,14 @@ impl BiharmonicEmbedding {
         let src = Mat::<f64>::from_fn(sources.len(), self.coords.ncols(), |s, i| self.coords[(sources[s], i)]);
         let mut g = Mat::<f64>::zeros(n, sources.len());
         faer::linalg::matmul::matmul(g.as_mut(), Accum::Replace, self.coords.as_ref(), src.transpose(), 1.0, Par::Seq);
-        Mat::<f64>::from_fn(n, sources.len(), |v, s| (self.norms2[v] + self.norms2[sources[s]] - 2.0 * g[(v, s)]).max(0.0).sqrt())
+        // In place, a column at a time (element-wise `from_fn` indexing was 10% of a detection).
+        for (s, &x) in sources.iter().enumerate() {
+            let nx = self.norms2[x];
+            for (d, &nv) in g.col_as_slice_mut(s).iter_mut().zip(&self.norms2) {
+                *d = (nv + nx - 2.0 * *d).max(0.0).sqrt();
+            }
+        }
+        g
     }
 
     /// `(|a|, |b|)` distances between two vertex sets.

@@ -184,6 +184,26 @@ pub(crate) fn row_major(m: faer::MatRef<'_, f64>, cols: usize) -> Vec<f64> {
     r
 }
 
+/// `‖a − b‖²`, with eight independent partial sums: a single running sum is a chain of
+/// dependent additions (4 cycles each), and this is the inner loop of every spectral descent.
+#[inline]
+pub(crate) fn squared_distance(a: &[f64], b: &[f64]) -> f64 {
+    let mut acc = [0.0f64; 8];
+    let (ca, cb) = (a.chunks_exact(8), b.chunks_exact(8));
+    let (ra, rb) = (ca.remainder(), cb.remainder());
+    for (x, y) in ca.zip(cb) {
+        for t in 0..8 {
+            let d = x[t] - y[t];
+            acc[t] += d * d;
+        }
+    }
+    let mut s = ra.iter().zip(rb).map(|(x, y)| (x - y) * (x - y)).sum::<f64>();
+    for t in acc {
+        s += t;
+    }
+    s
+}
+
 /// Greedy descent of `cost` on the mesh graph (CSR `adjacency`) from `start`: moves to the best
 /// neighbour while it improves. Returns the vertex and its cost.
 pub(crate) fn greedy_descent(adjacency: &(Vec<usize>, Vec<u32>), start: usize, mut cost: impl FnMut(usize) -> f64) -> (usize, f64) {
@@ -277,16 +297,22 @@ pub fn refine(ctx: &Context<'_>, m: &DenseMap, samples: &[usize], params: &MapPa
     };
     // Two starts, both zoomed out to a middle size; the better one (by `quality`) continues.
     let mid = (params.zoomout_k / 3).max(params.spectral_start).min(params.zoomout_k);
-    let mut image = m.image.clone();
-    zoomout(basis, &ctx.adjacency, &mut image, 10, mid, params.zoomout_step);
-    let mut start = own(image);
     // The second start: the low-frequency functional map fitted to the anchors (robust where a
-    // pose distorts distance profiles).
-    if params.spectral_start > 0 {
+    // pose distorts distance profiles). The two starts are independent: a thread each.
+    let second_start = || {
         let c0 = spectral_init::robust_fit(basis, &m.anchors, params.spectral_start);
         let mut image = spectral_init::point_map(basis, &ctx.adjacency, &c0, &ctx.search);
         zoomout(basis, &ctx.adjacency, &mut image, params.spectral_start, mid, params.zoomout_step);
-        let other = own(image);
+        own(image)
+    };
+    let (mut start, other) = std::thread::scope(|scope| {
+        let other = (params.spectral_start > 0).then(|| scope.spawn(second_start));
+        let mut image = m.image.clone();
+        zoomout(basis, &ctx.adjacency, &mut image, 10, mid, params.zoomout_step);
+        let start = own(image);
+        (start, other.map(|h| h.join().unwrap_or_else(|e| std::panic::resume_unwind(e))))
+    });
+    if let Some(other) = other {
         if stays(&other) && (better(&other, &start) || !stays(&start)) {
             start = other;
         }

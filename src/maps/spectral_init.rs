@@ -84,7 +84,7 @@ pub fn point_map(basis: &Eigenbasis, adjacency: &(Vec<usize>, Vec<u32>), c: &Mat
     let n = basis.num_vertices();
     let k0 = c.nrows();
     let rows = super::row_major(basis.evecs.as_ref(), k0);
-    let dist = |w: usize, t: &[f64]| -> f64 { rows[w * k0..(w + 1) * k0].iter().zip(t).map(|(a, b)| (a - b) * (a - b)).sum() };
+    let dist = |w: usize, t: &[f64]| -> f64 { super::squared_distance(&rows[w * k0..(w + 1) * k0], t) };
     let nbrs = |w: usize| &adjacency.1[adjacency.0[w]..adjacency.0[w + 1]];
     let mut target = vec![0.0; k0];
     let mut map = vec![usize::MAX; n];

@@ -40,9 +40,7 @@ pub fn zoomout(basis: &Eigenbasis, adjacency: &(Vec<usize>, Vec<u32>), map: &mut
             *x = scale * basis.mass[v] * col[v];
         }
     }
-    let dist = |w: usize, target: &[f64]| -> f64 {
-        rows[w * kmax..w * kmax + target.len()].iter().zip(target).map(|(a, b)| (a - b) * (a - b)).sum()
-    };
+    let dist = |w: usize, target: &[f64]| -> f64 { super::squared_distance(&rows[w * kmax..w * kmax + target.len()], target) };
     // Targets Φ_k(v) C_k of the vertices `vs`, one gemm: column r of `(C_kᵀ Φ_k(vs)ᵀ)` is the
     // target of vs[r], contiguous for the descent.
     let targets = |vs: &[usize], c: &Mat<f64>| -> Mat<f64> {
