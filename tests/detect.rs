@@ -2,7 +2,7 @@
 //!
 //! Quadrupeds are built at icosphere level 4 (2,562 vertices) to keep the suite fast; the
 //! evaluation binary (`intrinsym-eval --generated`) reports the 10k-vertex versions. Thresholds
-//! sit a few points under the measured values (posed 95.4%, 0.2% noise 95.4%, 0.5% noise
+//! sit a few points under the measured values (posed 93.3%, 0.2% noise 95.4%, 0.5% noise
 //! 96.6%, rest 100% at acc@0.05) so that they catch regressions without flaking.
 
 use intrinsym::shapes::{self, Pose};
@@ -53,7 +53,7 @@ fn posed_quadruped_mirror() {
     let identity: Vec<(usize, Vec<usize>)> = (0..s.map.len()).map(|v| (v, vec![v])).collect();
     let round_trip = eval::accuracy(&c.mesh, &back, &identity, &[0.05])[0];
     assert!(round_trip >= 0.9, "T∘T within 0.05√A for {round_trip}");
-    // The left–right leg maps are found (each ordered pair by the mirror); measured 0.72–1.0
+    // The left–right leg maps are found (each ordered pair by the mirror); measured 0.72–0.94
     // at acc@0.1 (the 0.8 is met by three of the four: a bent hind leg is the worst).
     for (i, j) in [(0, 1), (1, 0), (2, 3), (3, 2)] {
         let best = d.symmetries.iter().map(|s| eval::accuracy(&c.mesh, &s.map, &c.limb_truth(i, j), &[0.1])[0]).fold(0.0, f64::max);

@@ -45,7 +45,7 @@ pub struct MapParams {
     pub refine: usize,
     /// Size `k_f` of the reported functional map (default 20).
     pub fmap_size: usize,
-    /// Vertices in the coarse search of anchor refinement (default 600), of which the best 8 are
+    /// Vertices in the coarse search of anchor refinement (default 1000), of which the best 8 are
     /// descended (a single descent from the best of 1000 lost the true mirror of TOSCA's david:
     /// the robust mismatch has narrow basins; 3000 with one descent was 4× slower).
     pub search_vertices: usize,
@@ -73,7 +73,7 @@ pub struct MapParams {
 
 impl Default for MapParams {
     fn default() -> Self {
-        MapParams { accept: 0.03, refine: 3, fmap_size: 20, search_vertices: 600, local_anchors: 16, wks_accept: 0.2, zoomout_fraction: 0.6, zoomout_k: 100, spectral_start: 12, zoomout_step: 5, global_fraction: 0.9 }
+        MapParams { accept: 0.03, refine: 3, fmap_size: 20, search_vertices: 1000, local_anchors: 16, wks_accept: 0.2, zoomout_fraction: 0.6, zoomout_k: 100, spectral_start: 12, zoomout_step: 5, global_fraction: 0.9 }
     }
 }
 
