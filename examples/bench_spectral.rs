@@ -24,7 +24,6 @@ fn main() {
     let args: Vec<String> = std::env::args().collect();
     let s: usize = args.get(1).and_then(|a| a.parse().ok()).unwrap_or(129);
     let k: usize = args.get(2).and_then(|a| a.parse().ok()).unwrap_or(100);
-    let factor: f64 = std::env::var("BASIS").ok().and_then(|b| b.parse().ok()).unwrap_or(2.0);
     let mesh = shapes::bumpy_torus(s);
     if let Some(dir) = args.get(3) {
         let lengths = cotan::mollified_edge_lengths(&mesh);
@@ -38,7 +37,9 @@ fn main() {
     }
     let mut params = EigenParams::default();
     params.k = k;
-    params.basis_factor = factor;
+    if let Some(f) = std::env::var("BASIS").ok().and_then(|b| b.parse().ok()) {
+        params.basis_factor = f;
+    }
     if let Some(t) = std::env::var("TOL").ok().and_then(|b| b.parse().ok()) {
         params.tol = t;
     }

@@ -203,6 +203,36 @@ pub fn scale_rows(w: &[Lanes], mass: &[f64], out: &mut Vec<Lanes>) {
     out.extend(w.iter().zip(mass).map(|(x, &m)| x.map(|v| m * v)));
 }
 
+/// `out = L x` for a symmetric CSC `L` and an interleaved block `x` (row `i` of `L` is its
+/// column `i`, so each entry is one gathered row and one multiply-add).
+pub fn sparse_mul(lap: &sprs::CsMat<f64>, x: &[Lanes], out: &mut Vec<Lanes>) {
+    out.clear();
+    out.resize(x.len(), [0.0; LANES]);
+    dispatch(SparseMul { lap, x, out })
+}
+
+struct SparseMul<'a> {
+    lap: &'a sprs::CsMat<f64>,
+    x: &'a [Lanes],
+    out: &'a mut [Lanes],
+}
+
+impl Kernel for SparseMul<'_> {
+    type Output = ();
+    #[inline(always)]
+    fn run<S: pulp::Simd>(self, simd: S) {
+        for (o, col) in self.out.iter_mut().zip(self.lap.outer_iterator()) {
+            let o = vecs_mut::<S>(o);
+            for (j, &a) in col.iter() {
+                let (xj, a) = (vecs::<S>(&self.x[j]), simd.splat_f64s(a));
+                for q in 0..o.len() {
+                    o[q] = simd.mul_add_f64s(a, xj[q], o[q]);
+                }
+            }
+        }
+    }
+}
+
 /// `Σ_r mass[r] · x[r] · y[r]`, lane-wise.
 pub fn m_dots(x: &[Lanes], y: &[Lanes], mass: &[f64]) -> Lanes {
     dispatch(MDots { x, y, mass })
