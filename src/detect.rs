@@ -284,13 +284,12 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
     profiled.sort_by(|a, b| score(&b.0, b.2).total_cmp(&score(&a.0, a.2)));
 
     // Two maps are one symmetry when at least `fraction` of the samples both map agree.
-    let same_as = |dense: &maps::DenseMap, found: &[Found], fraction: f64| {
-        found.iter().position(|f| {
-            let both: Vec<usize> = probes.iter().copied().filter(|&v| f.dense.map[v] >= 0 && dense.map[v] >= 0).collect();
-            let same = both.iter().filter(|&&v| emb.dist(f.dense.map[v] as usize, dense.map[v] as usize) <= agree_tol).count();
-            !both.is_empty() && same as f64 >= fraction * both.len() as f64
-        })
+    let agrees = |a: &maps::DenseMap, b: &maps::DenseMap, fraction: f64| {
+        let both: Vec<usize> = probes.iter().copied().filter(|&v| a.map[v] >= 0 && b.map[v] >= 0).collect();
+        let same = both.iter().filter(|&&v| emb.dist(a.map[v] as usize, b.map[v] as usize) <= agree_tol).count();
+        !both.is_empty() && same as f64 >= fraction * both.len() as f64
     };
+    let same_as = |dense: &maps::DenseMap, found: &[Found], fraction: f64| found.iter().position(|f| agrees(&f.dense, dense, fraction));
     // Phase 2: refine (nearly) global maps, keep those that move points and preserve distances.
     let total = profiled.len().max(1);
     let mut refinements = 0;
@@ -369,6 +368,41 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
                     fruitless = 0;
                 }
                 found.push(candidate)
+            }
+        }
+    }
+    // Phase 3 (beyond the paper): the symmetries of a shape form a group, so the composition of
+    // two global symmetries is one too. Voting and the refinement budget find generators (two
+    // mirrors of a five-armed star, a mirror and a rotation, …); compositions that move points,
+    // preserve distances and are new complete the group (the star's other mirrors and every
+    // power of its rotation; the quadruped's diagonal leg map from its two mirrors).
+    let mut next = 0;
+    while next < found.len() && found.len() < params.max_symmetries {
+        let generators: Vec<usize> = (0..=next).filter(|&i| found[i].dense.global).collect();
+        let b = next;
+        next += 1;
+        if !found[b].dense.global {
+            continue;
+        }
+        for a in generators {
+            for (first, second) in [(a, b), (b, a)] {
+                if found.len() >= params.max_symmetries {
+                    break;
+                }
+                let dense = maps::compose(&found[second].dense, &found[first].dense, probes);
+                if characterize::displacement(&dense.map, probes, &emb, vinfo.diameter) < params.min_displacement {
+                    continue;
+                }
+                // Errors of the two maps add up at most: a composition distorting more than its
+                // factors together is partly wrong (one factor was only partly right).
+                let distortion = characterize::sample_distortion(&dense.map, probes, &emb, vinfo.diameter);
+                let bound = (found[first].distortion + found[second].distortion).min(params.max_distortion);
+                if distortion > bound || same_as(&dense, &found, 0.5).is_some() {
+                    continue;
+                }
+                let complexity = characterize::complexity(&maps::functional_map(&basis, &dense.map, params.maps.fmap_size), params.complexity_width);
+                let seed = (found[first].seed.0, dense.image[found[first].seed.0]);
+                found.push(Found { dense, seed, distortion, complexity });
             }
         }
     }

@@ -477,6 +477,25 @@ fn finish(ctx: &Context<'_>, anchors: Vec<(usize, usize)>, image: Vec<usize>, pa
     DenseMap { map, confidence, mismatch: mismatch_of, anchors, region_size, global, refined, image }
 }
 
+/// The composition `v ↦ second(first(v))` of two global maps: global, with the smaller of the
+/// two confidences and the larger mismatch along the way, and the samples with their images as
+/// anchors.
+pub fn compose(second: &DenseMap, first: &DenseMap, samples: &[usize]) -> DenseMap {
+    let image: Vec<usize> = first.image.iter().map(|&w| second.image[w]).collect();
+    let confidence = first.image.iter().zip(&first.confidence).map(|(&w, &c)| c.min(second.confidence[w])).collect();
+    let mismatch = first.image.iter().zip(&first.mismatch).map(|(&w, &m)| m.max(second.mismatch[w])).collect();
+    DenseMap {
+        map: image.iter().map(|&w| w as i64).collect(),
+        confidence,
+        mismatch,
+        anchors: samples.iter().map(|&s| (s, image[s])).collect(),
+        region_size: image.len(),
+        global: true,
+        refined: first.refined && second.refined,
+        image,
+    }
+}
+
 /// `(k_f, k_f)` functional map of the pull-back by `map` over its region:
 /// `C_ij = Σ_{v: map[v] ≥ 0} m_v φ_i(v) φ_j(map[v])`.
 pub fn functional_map(basis: &Eigenbasis, map: &[i64], k_f: usize) -> Mat<f64> {

@@ -337,6 +337,56 @@ pub fn quadruped(level: u32, pose: Pose, noise: f64, seed: u64) -> Creature {
     creature(level, [0.5, 0.45, 1.0], &limbs, noise, seed)
 }
 
+/// The `4·arms − 1` non-trivial symmetries of [`star`] as vertex maps, named. The star is
+/// symmetric under the dihedral group of its arms (mirrors in the vertical planes through the
+/// y axis and arm j, rotations by `j·360°/arms` about the y axis) times the flip y → −y of its
+/// flat body: the flip itself, the half-turns about each arm's axis (mirror j ∘ flip) and the
+/// rotoreflections (rotation ∘ flip). The tessellation is exactly symmetric only under x → −x
+/// (mirror 0), so each map sends a vertex to the vertex nearest its transformed position.
+pub fn star_symmetries(c: &Creature, arms: usize) -> Vec<(String, Vec<u32>)> {
+    let p = &c.rest;
+    let nearest = |q: [f64; 3]| -> u32 {
+        let d2 = |a: &[f64; 3]| (a[0] - q[0]).powi(2) + (a[1] - q[1]).powi(2) + (a[2] - q[2]).powi(2);
+        (0..p.len()).min_by(|&i, &j| d2(&p[i]).total_cmp(&d2(&p[j]))).unwrap_or(0) as u32
+    };
+    let mut out = Vec::new();
+    for flip in [false, true] {
+        let apply = |f: &dyn Fn([f64; 3]) -> [f64; 3]| {
+            p.iter()
+                .map(|&x| {
+                    let y = f(x);
+                    nearest(if flip { [y[0], -y[1], y[2]] } else { y })
+                })
+                .collect::<Vec<u32>>()
+        };
+        for j in 0..arms {
+            let a = 2.0 * std::f64::consts::PI * j as f64 / arms as f64 + 0.5 * std::f64::consts::PI;
+            let (dx, dz) = (a.cos(), a.sin());
+            let reflect = |x: [f64; 3]| {
+                let t = 2.0 * (x[0] * dx + x[2] * dz);
+                [t * dx - x[0], x[1], t * dz - x[2]]
+            };
+            out.push((if flip { format!("half-turn about arm {j}") } else { format!("mirror {j}") }, apply(&reflect)));
+        }
+        for j in 0..arms {
+            if j == 0 && !flip {
+                continue; // the identity
+            }
+            let t = 2.0 * std::f64::consts::PI * j as f64 / arms as f64;
+            let (c, s) = (t.cos(), t.sin());
+            let rotate = |x: [f64; 3]| [c * x[0] + s * x[2], x[1], -s * x[0] + c * x[2]];
+            let angle = 360 * j / arms;
+            let name = match (flip, j) {
+                (true, 0) => "horizontal mirror (y → −y)".to_string(),
+                (true, _) => format!("rotoreflection {angle}°"),
+                _ => format!("rotation {angle}°"),
+            };
+            out.push((name, apply(&rotate)));
+        }
+    }
+    out
+}
+
 /// A flat star with `arms` equal arms in the xz-plane (n mirror planes and n−1 rotations).
 pub fn star(arms: usize, level: u32) -> Creature {
     let limbs: Vec<Limb> = (0..arms)
