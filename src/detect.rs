@@ -377,7 +377,8 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
     // two global symmetries is one too. Voting and the refinement budget find generators (two
     // mirrors of a five-armed star, a mirror and a rotation, …); compositions that move points,
     // preserve distances and are new complete the group (the star's other mirrors and every
-    // power of its rotation; the quadruped's diagonal leg map from its two mirrors).
+    // power of its rotation; the generated quadruped's diagonal leg map from its mirror and its
+    // front↔back near-symmetry).
     let mut next = 0;
     while next < found.len() && found.len() < params.max_symmetries {
         let generators: Vec<usize> = (0..=next).filter(|&i| found[i].dense.global).collect();
@@ -387,7 +388,8 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
             continue;
         }
         for a in generators {
-            for (first, second) in [(a, b), (b, a)] {
+            let orders: &[(usize, usize)] = if a == b { &[(b, b)] } else { &[(a, b), (b, a)] };
+            for &(first, second) in orders {
                 if found.len() >= params.max_symmetries {
                     break;
                 }

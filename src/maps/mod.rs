@@ -10,8 +10,9 @@
 //! disambiguation (the trap of sign-only functional maps on posed shapes). It runs in two steps:
 //!
 //! 1. *Anchor refinement*: every sample is matched (coarse search over a strided vertex subset,
-//!    then greedy descent on the mesh graph), samples with `c ≤ accept·diameter` become anchors
-//!    at vertex precision, and this repeats: a partial candidate grows to its whole region.
+//!    then greedy descents on the mesh graph from its best 8 vertices), samples with
+//!    `c ≤ accept·diameter` become anchors at vertex precision, and this repeats: a partial
+//!    candidate grows to its whole region.
 //! 2. *Dense map*: each vertex descends `c_v` on the mesh graph from the images of its nearest
 //!    anchor and of already-mapped neighbours.
 //!
