@@ -501,18 +501,11 @@ pub fn compose(second: &DenseMap, first: &DenseMap, samples: &[usize]) -> DenseM
 /// `C_ij = Σ_{v: map[v] ≥ 0} m_v φ_i(v) φ_j(map[v])`.
 pub fn functional_map(basis: &Eigenbasis, map: &[i64], k_f: usize) -> Mat<f64> {
     let k_f = k_f.min(basis.k());
+    let region: Vec<(usize, usize)> = map.iter().enumerate().filter(|&(_, &t)| t >= 0).map(|(v, &t)| (v, t as usize)).collect();
+    // C = (M Φ)ᵀ Φ[T] over the region, one gemm.
+    let a = Mat::<f64>::from_fn(region.len(), k_f, |r, i| basis.mass[region[r].0] * basis.evecs[(region[r].0, i)]);
+    let b = Mat::<f64>::from_fn(region.len(), k_f, |r, j| basis.evecs[(region[r].1, j)]);
     let mut c = Mat::<f64>::zeros(k_f, k_f);
-    for (v, &t) in map.iter().enumerate() {
-        if t < 0 {
-            continue;
-        }
-        let m = basis.mass[v];
-        for i in 0..k_f {
-            let a = m * basis.evecs[(v, i)];
-            for j in 0..k_f {
-                c[(i, j)] += a * basis.evecs[(t as usize, j)];
-            }
-        }
-    }
+    faer::linalg::matmul::matmul(c.as_mut(), faer::Accum::Replace, a.transpose(), b.as_ref(), 1.0, faer::Par::Seq);
     c
 }
