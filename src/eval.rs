@@ -32,6 +32,8 @@ pub struct Geodesics {
     len: Vec<f64>,
     dist: Vec<f64>,
     touched: Vec<u32>,
+    /// Vertex positions: the straight-line distance bounds an edge path from below.
+    points: Vec<[f64; 3]>,
 }
 
 impl Geodesics {
@@ -46,11 +48,17 @@ impl Geodesics {
             }
         }
         let n = mesh.num_vertices();
-        Geodesics { off, nbr, len, dist: vec![f64::INFINITY; n], touched: Vec::new() }
+        Geodesics { off, nbr, len, dist: vec![f64::INFINITY; n], touched: Vec::new(), points: mesh.vertices.clone() }
     }
 
     /// Distance from `a` to `b`, or `f64::INFINITY` when it exceeds `limit`.
     pub fn distance(&mut self, a: usize, b: usize, limit: f64) -> f64 {
+        // Every edge path is at least as long as the straight segment: a pair farther apart
+        // than `limit` cannot be reached, and needs no search (most pairs of a wrong map).
+        let (p, q) = (self.points[a], self.points[b]);
+        if ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) + (p[2] - q[2]).powi(2)).sqrt() > limit {
+            return f64::INFINITY;
+        }
         for &t in &self.touched {
             self.dist[t as usize] = f64::INFINITY;
         }
