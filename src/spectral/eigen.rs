@@ -199,10 +199,9 @@ pub fn eigen(
         while nv - b < ncv {
             let j0 = nv - b;
             // W = Op V_j = (L + σM)⁻¹ M V_j, deflated.
-            for t in 0..b {
-                for ((w, &x), &m) in W.iter_mut().zip(V.col_as_slice(j0 + t)).zip(mass) {
-                    w[t] = m * x;
-                }
+            gather(V.as_ref(), j0, b, &mut W);
+            for (w, &m) in W.iter_mut().zip(mass) {
+                *w = w.map(|x| m * x);
             }
             let ts = Instant::now();
             factor.solve(&mut W, &mut scratch.solve);
@@ -267,9 +266,17 @@ pub fn eigen(
         matmul(coupling.as_mut(), Accum::Replace, R_last.as_ref(), S.as_ref().subrows(m - b, b), 1.0, Par::Seq);
         // In the original problem, Lφ − λMφ = −(L + σM) Q c / θ: with Z = (L + σM) Q and
         // G = ZᵀZ, ‖Lφ − λMφ‖ = √(cᵀGc)/θ, at the cost of one sparse product per restart.
-        let Z = shifted_mul(lap, mass, sigma, V.as_ref().subcols(m, b));
+        gather(V.as_ref(), m, b, &mut scratch.mw);
+        kernels::sparse_mul(lap, &scratch.mw, &mut scratch.solve);
         let mut G = Mat::<f64>::zeros(b, b);
-        matmul(G.as_mut(), Accum::Replace, Z.transpose(), Z.as_ref(), 1.0, Par::Seq);
+        for ((z, q), &w) in scratch.solve.iter().zip(&scratch.mw).zip(mass) {
+            let z: Lanes = std::array::from_fn(|t| z[t] + sigma * w * q[t]);
+            for r in 0..b {
+                for s in 0..b {
+                    G[(r, s)] += z[r] * z[s];
+                }
+            }
+        }
         let lambda_max = 1.0 / theta[nev - 1] - sigma;
         let estimate = |i: usize| {
             let c = coupling.col(i);
@@ -499,6 +506,18 @@ impl Workspace<'_> {
     }
 }
 
+/// The interleaved block of columns `j0 .. j0 + width` of `v` (`width ≤ LANES`; the other lanes
+/// are zero).
+fn gather(v: MatRef<'_, f64>, j0: usize, width: usize, w: &mut Vec<Lanes>) {
+    w.clear();
+    w.resize(v.nrows(), [0.0; LANES]);
+    for t in 0..width {
+        for (row, &x) in w.iter_mut().zip(v.col(j0 + t).try_as_col_major().expect("column-major").as_slice()) {
+            row[t] = x;
+        }
+    }
+}
+
 /// Columns `j0 .. j0 + LANES` of `v` ← the interleaved block `w`.
 fn scatter(w: &[Lanes], v: &mut Mat<f64>, j0: usize) {
     for t in 0..LANES {
@@ -569,30 +588,6 @@ fn axpy_cols(v: &mut Mat<f64>, dst: usize, src: usize, a: f64) {
     }
 }
 
-/// `L X` for a CSC symmetric `L` (row `i` of `L` is its column `i`: each entry is a gather and
-/// one write).
-fn sparse_mul(lap: &CsMat<f64>, x: MatRef<'_, f64>) -> Mat<f64> {
-    let mut out = Mat::<f64>::zeros(x.nrows(), x.ncols());
-    for c in 0..x.ncols() {
-        let xc = x.col(c).try_as_col_major().expect("column-major").as_slice();
-        for (o, col) in out.col_as_slice_mut(c).iter_mut().zip(lap.outer_iterator()) {
-            *o = col.iter().map(|(j, &a)| a * xc[j]).sum();
-        }
-    }
-    out
-}
-
-/// `(L + σM) X`.
-fn shifted_mul(lap: &CsMat<f64>, mass: &[f64], sigma: f64, x: MatRef<'_, f64>) -> Mat<f64> {
-    let mut out = sparse_mul(lap, x);
-    for j in 0..x.ncols() {
-        for i in 0..x.nrows() {
-            out[(i, j)] += sigma * mass[i] * x[(i, j)];
-        }
-    }
-    out
-}
-
 /// Flips `x` so that its entry of largest magnitude is positive (deterministic signs).
 fn normalize_sign(x: &mut [f64]) {
     let mut best = 0.0f64;
@@ -613,23 +608,15 @@ fn normalize_sign(x: &mut [f64]) {
 /// Max residual `‖Lφ − λMφ‖₂ / ‖Mφ‖₂` and max `|ΦᵀMΦ − I|` entry.
 #[allow(non_snake_case)]
 pub fn check(lap: &CsMat<f64>, mass: &[f64], evals: &[f64], evecs: MatRef<'_, f64>) -> (f64, f64) {
-    let (n, k) = (evecs.nrows(), evecs.ncols());
+    let k = evecs.ncols();
     // Eight columns at a time, interleaved: no n × k temporaries.
-    let mut x: Vec<Lanes> = vec![[0.0; LANES]; n];
+    let mut x: Vec<Lanes> = Vec::new();
     let (mut lx, mut mx) = (Vec::new(), Vec::new());
     let mut G = vec![[0.0; LANES]; k * k.div_ceil(LANES)];
     let mut worst = 0.0f64;
     for (chunk, g) in (0..k).step_by(LANES).zip(G.chunks_mut(k)) {
         let width = LANES.min(k - chunk);
-        for (t, row) in (0..LANES).map(|t| (t, t < width)) {
-            if row {
-                for (xi, &v) in x.iter_mut().zip(evecs.col(chunk + t).try_as_col_major().expect("column-major").as_slice()) {
-                    xi[t] = v;
-                }
-            } else {
-                x.iter_mut().for_each(|xi| xi[t] = 0.0);
-            }
-        }
+        gather(evecs, chunk, width, &mut x);
         kernels::sparse_mul(lap, &x, &mut lx);
         kernels::scale_rows(&x, mass, &mut mx);
         for t in 0..width {
