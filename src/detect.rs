@@ -190,28 +190,6 @@ impl Detection {
     }
 }
 
-/// `f` applied to every item, on up to `available_parallelism` threads (independent work; each
-/// kernel stays single-threaded), results in item order.
-fn parallel_map<T: Sync, R: Send>(items: &[T], f: impl Fn(&T) -> R + Sync) -> Vec<R> {
-    let threads = std::thread::available_parallelism().map_or(1, |t| t.get()).min(items.len());
-    if threads <= 1 {
-        return items.iter().map(f).collect();
-    }
-    let f = &f;
-    let mut out: Vec<Option<R>> = (0..items.len()).map(|_| None).collect();
-    std::thread::scope(|scope| {
-        let handles: Vec<_> = (0..threads)
-            .map(|t| scope.spawn(move || items.iter().enumerate().skip(t).step_by(threads).map(|(i, x)| (i, f(x))).collect::<Vec<_>>()))
-            .collect();
-        for h in handles {
-            for (i, r) in h.join().unwrap_or_else(|e| std::panic::resume_unwind(e)) {
-                out[i] = Some(r);
-            }
-        }
-    });
-    out.into_iter().map(|r| r.expect("every item mapped")).collect()
-}
-
 /// Runs the pipeline; `progress(fraction)` returning `false` cancels with
 /// [`crate::spectral::SpectralError::Cancelled`].
 pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool) -> Result<Detection, Error> {
@@ -278,7 +256,7 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
         let distortion = characterize::sample_distortion(&dense.map, probes, &emb, vinfo.diameter);
         Some((dense, anchors[0], distortion))
     };
-    let mut profiled: Vec<(maps::DenseMap, (usize, usize), f64)> = parallel_map(&ranked, profile).into_iter().flatten().collect();
+    let mut profiled: Vec<(maps::DenseMap, (usize, usize), f64)> = crate::parallel::map(&ranked, profile).into_iter().flatten().collect();
     if !progress(0.8) {
         return Err(cancelled());
     }
@@ -300,7 +278,7 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
     // second core: refine only depends on the map, so the result is the sequential one).
     let mut ahead: Option<(usize, maps::DenseMap)> = None;
     let skip = |dense: &maps::DenseMap, found: &[Found]| same_as(dense, found, 0.8).is_some_and(|i| found[i].dense.refined);
-    let parallel = std::thread::available_parallelism().map_or(1, |t| t.get()) > 1;
+    let parallel = crate::parallel::available();
     for pi in 0..profiled.len() {
         let (mut dense, seed) = (profiled[pi].0.clone(), profiled[pi].1);
         if !progress(0.8 + 0.15 * pi as f64 / total as f64) {
@@ -329,12 +307,14 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
                         .then(|| (pi + 1..profiled.len()).find(|&j| maps::refinable(&ctx, &profiled[j].0, &params.maps) && !skip(&profiled[j].0, &found)))
                         .flatten();
                     match next {
-                        Some(j) => std::thread::scope(|scope| {
-                            let h = scope.spawn(|| maps::refine(&ctx, &profiled[j].0, probes, &params.maps));
-                            let refined = maps::refine(&ctx, &dense, probes, &params.maps);
-                            ahead = Some((j, h.join().unwrap_or_else(|e| std::panic::resume_unwind(e))));
+                        Some(j) => {
+                            let (next, refined) = crate::parallel::join(
+                                || maps::refine(&ctx, &profiled[j].0, probes, &params.maps),
+                                || maps::refine(&ctx, &dense, probes, &params.maps),
+                            );
+                            ahead = Some((j, next));
                             refined
-                        }),
+                        }
                         None => maps::refine(&ctx, &dense, probes, &params.maps),
                     }
                 }

@@ -34,6 +34,7 @@ pub mod ffi;
 pub mod maps;
 pub mod mesh;
 pub mod output;
+mod parallel;
 pub mod sampling;
 pub mod shapes;
 pub mod spectral;

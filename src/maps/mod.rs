@@ -300,6 +300,12 @@ pub fn refine(ctx: &Context<'_>, m: &DenseMap, samples: &[usize], params: &MapPa
     };
     // Two starts, both zoomed out to a middle size; the better one (by `quality`) continues.
     let mid = (params.zoomout_k / 3).max(params.spectral_start).min(params.zoomout_k);
+    // The first start: the profile map itself.
+    let first_start = || {
+        let mut image = m.image.clone();
+        zoomout(basis, &ctx.adjacency, &mut image, 10, mid, params.zoomout_step);
+        own(image)
+    };
     // The second start: the low-frequency functional map fitted to the anchors (robust where a
     // pose distorts distance profiles). The two starts are independent: a thread each.
     let second_start = || {
@@ -308,13 +314,12 @@ pub fn refine(ctx: &Context<'_>, m: &DenseMap, samples: &[usize], params: &MapPa
         zoomout(basis, &ctx.adjacency, &mut image, params.spectral_start, mid, params.zoomout_step);
         own(image)
     };
-    let (mut start, other) = std::thread::scope(|scope| {
-        let other = (params.spectral_start > 0).then(|| scope.spawn(second_start));
-        let mut image = m.image.clone();
-        zoomout(basis, &ctx.adjacency, &mut image, 10, mid, params.zoomout_step);
-        let start = own(image);
-        (start, other.map(|h| h.join().unwrap_or_else(|e| std::panic::resume_unwind(e))))
-    });
+    let (mut start, other) = if params.spectral_start > 0 {
+        let (other, start) = crate::parallel::join(second_start, first_start);
+        (start, Some(other))
+    } else {
+        (first_start(), None)
+    };
     if let Some(other) = other {
         if stays(&other) && (better(&other, &start) || !stays(&start)) {
             start = other;
