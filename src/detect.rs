@@ -353,6 +353,17 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
             }
         }
     }
+    // Geodesic polish of every map (see `maps::geodesic`): on posed shapes geodesic distances
+    // are preserved far more precisely than biharmonic ones or low eigenfunctions.
+    if params.maps.polish > 0 {
+        let mut geodesics = maps::geodesic::Geodesics::new(&ctx);
+        for f in found.iter_mut() {
+            for _ in 0..params.maps.polish {
+                f.dense = maps::geodesic::polish(&ctx, &mut geodesics, &f.dense, probes, &params.maps);
+            }
+            f.distortion = characterize::sample_distortion(&f.dense.map, probes, &emb, vinfo.diameter);
+        }
+    }
     // Phase 3 (beyond the paper): the symmetries of a shape form a group, so the composition of
     // two global symmetries is one too. Voting and the refinement budget find generators (two
     // mirrors of a five-armed star, a mirror and a rotation, …); compositions that move points,

@@ -55,6 +55,9 @@ enum Command {
         /// Region tolerance: mean distance mismatch as a fraction of the diameter.
         #[arg(long, default_value_t = 0.03)]
         accept: f64,
+        /// Passes of the geodesic polish of every map (0 disables it).
+        #[arg(long, default_value_t = 2)]
+        polish: usize,
         /// Number of symmetry groups (default: automatic).
         #[arg(long)]
         groups: Option<usize>,
@@ -130,6 +133,7 @@ fn run(cli: Cli) -> Result<(), intrinsym::Error> {
             wks_quantile,
             eps,
             accept,
+            polish,
             groups,
             allow_non_manifold,
             reject_disconnected,
@@ -148,6 +152,7 @@ fn run(cli: Cli) -> Result<(), intrinsym::Error> {
             params.voting.wks_quantile = wks_quantile;
             params.voting.eps = eps;
             params.maps.accept = accept;
+            params.maps.polish = polish;
             params.groups = groups;
             // A progress bar on stderr, hidden when stderr is not a terminal.
             let bar = indicatif::ProgressBar::with_draw_target(Some(1000), indicatif::ProgressDrawTarget::stderr());

@@ -26,6 +26,7 @@
 
 use faer::Mat;
 
+pub mod geodesic;
 pub mod spectral_init;
 pub mod zoomout;
 
@@ -72,11 +73,14 @@ pub struct MapParams {
     /// up to a quarter of a posed shape past the region tolerance; with 0.9 the posed quadruped's
     /// front↔back near-symmetry and TOSCA's posed david stayed "partial" and unmapped there).
     pub global_fraction: f64,
+    /// Passes of the geodesic polish ([`geodesic::polish`]) given to every map (default 2; 0
+    /// disables it). On TOSCA (acc@0.05): null poses 93.1 → 95.9% mean, posed 79.3 → 84.6%.
+    pub polish: usize,
 }
 
 impl Default for MapParams {
     fn default() -> Self {
-        MapParams { accept: 0.03, refine: 3, fmap_size: 20, search_vertices: 1000, local_anchors: 16, wks_accept: 0.2, zoomout_fraction: 0.6, zoomout_k: 100, spectral_start: 12, zoomout_step: 5, global_fraction: 0.75 }
+        MapParams { accept: 0.03, refine: 3, fmap_size: 20, search_vertices: 1000, local_anchors: 16, wks_accept: 0.2, zoomout_fraction: 0.6, zoomout_k: 100, spectral_start: 12, zoomout_step: 5, global_fraction: 0.75, polish: 2 }
     }
 }
 

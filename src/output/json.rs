@@ -2,7 +2,7 @@
 //!
 //! ```text
 //! { "vertices": n, "faces": m,
-//!   "params": { "eigenpairs", "samples", "seed", "wks_quantile", "eps", "accept", "groups" },
+//!   "params": { "eigenpairs", "samples", "seed", "wks_quantile", "eps", "accept", "polish", "groups" },
 //!   "timings": { "spectral", "descriptors", "distance", "sampling", "voting", "maps",
 //!                "characterize", "cluster", "total" },           // seconds
 //!   "symmetries": [ { "id", "kind": "global"|"partial", "group", "order", "complexity",
@@ -54,6 +54,7 @@ pub fn to_json(det: &Detection, params: &Params) -> Value {
             "wks_quantile": params.voting.wks_quantile,
             "eps": params.voting.eps,
             "accept": params.maps.accept,
+            "polish": params.maps.polish,
             "groups": params.groups,
         },
         "timings": {
