@@ -5,7 +5,8 @@
 //! wrongly mapped vertices (error > 0.05·√area): size, centroid, and the mean distance
 //! mismatch (against the 64 farthest-point samples, 16 nearest) of the detected and of the
 //! true map there — a piece where the true map fits better is a search failure, one where it
-//! fits worse a model failure.
+//! fits worse a model failure. With `EXPERIMENTS=1` it also shows how far each dense-map method
+//! gets from the true sample correspondences (the evidence for `maps::geodesic`).
 
 use intrinsym::distance::biharmonic;
 use intrinsym::mesh::read_mesh;
@@ -49,8 +50,8 @@ fn main() {
         }
     }
     let s = &det.symmetries[best.1];
-    if std::env::var("POLISH").is_ok() {
-        polish_report(&mesh, s, &pairs);
+    if std::env::var("EXPERIMENTS").is_ok() {
+        experiments(&mesh, &pairs);
     }
     let scale = mesh.area().sqrt();
     let mut geo = eval::Geodesics::new(&mesh);
@@ -118,9 +119,9 @@ fn main() {
     }
 }
 
-/// Experiments: re-match the best map from its own sample images.
-#[allow(dead_code)]
-pub fn polish_report(mesh: &Mesh, s: &intrinsym::Symmetry, pairs: &[(usize, Vec<usize>)]) {
+/// The experiments behind `maps::geodesic` (run with `EXPERIMENTS=1`): how far each dense-map
+/// method gets from the *true* sample correspondences.
+pub fn experiments(mesh: &Mesh, pairs: &[(usize, Vec<usize>)]) {
     use intrinsym::maps;
     let params = Params::default();
     let basis = Eigenbasis::compute(mesh, &params.eigen).expect("basis");
@@ -130,146 +131,39 @@ pub fn polish_report(mesh: &Mesh, s: &intrinsym::Symmetry, pairs: &[(usize, Vec<
     let diameter = samples.iter().flat_map(|&a| samples.iter().map(move |&b| (a, b))).map(|(a, b)| emb.dist(a, b)).fold(0.0, f64::max);
     let mut ctx = maps::Context::new(mesh, &emb, &desc, diameter, &params.maps);
     ctx.basis = Some(&basis);
-    let acc = |m: &[i64]| {
-        let a = eval::accuracy(mesh, m, pairs, &[0.05, 0.1]);
+    let acc = |m: &[usize]| {
+        let m: Vec<i64> = m.iter().map(|&w| w as i64).collect();
+        let a = eval::accuracy(mesh, &m, pairs, &[0.05, 0.1]);
         format!("{:.1}/{:.1}", 100.0 * a[0], 100.0 * a[1])
     };
-    let anchors: Vec<(usize, usize)> = samples.iter().filter(|&&v| s.map[v] >= 0).map(|&v| (v, s.map[v] as usize)).collect();
-    let mut truth = vec![usize::MAX; mesh.num_vertices()];
+    let n = mesh.num_vertices();
+    let mut truth = vec![usize::MAX; n];
     for (v, t) in pairs {
         truth[*v] = t[0];
     }
     let true_anchors: Vec<(usize, usize)> = samples.iter().filter(|&&v| truth[v] != usize::MAX).map(|&v| (v, truth[v])).collect();
     if let Some(p) = maps::profile_map(&ctx, &true_anchors, &samples, 0.03 * diameter, &params.maps) {
-        let pm: Vec<i64> = p.image.iter().map(|&w| w as i64).collect();
-        println!("profile from TRUE sample images: acc {} ({} anchors)", acc(&pm), p.anchors.len());
-        let mut image = p.image.clone();
-        maps::zoomout(&basis, &ctx.adjacency, &mut image, 10, 100, 5);
-        let zm: Vec<i64> = image.iter().map(|&w| w as i64).collect();
-        println!("  + zoomout 10→100: acc {}", acc(&zm));
+        println!("biharmonic profile map from the true sample pairs: acc@0.05/0.10 {}", acc(&p.image));
     }
-    // ZoomOut from the truth (vertices without truth: identity).
-    let mut image: Vec<usize> = (0..mesh.num_vertices()).map(|v| if truth[v] != usize::MAX { truth[v] } else { v }).collect();
-    let tm: Vec<i64> = image.iter().map(|&w| w as i64).collect();
-    println!("truth itself: acc {}", acc(&tm));
-    let mut image10 = image.clone();
-    maps::zoomout(&basis, &ctx.adjacency, &mut image10, 10, 100, 5);
-    let zm: Vec<i64> = image10.iter().map(|&w| w as i64).collect();
-    println!("zoomout 10→100 from truth: acc {}", acc(&zm));
-    {
-        // Exact nearest neighbours instead of greedy descent.
-        let n = mesh.num_vertices();
-        let mut map: Vec<usize> = (0..n).map(|v| if truth[v] != usize::MAX { truth[v] } else { v }).collect();
-        let mut k = 10;
-        loop {
-            let phi = basis.evecs.as_ref().subcols(0, k);
-            let mut c = faer::Mat::<f64>::zeros(k, k);
-            for v in 0..n {
-                for i in 0..k {
-                    let a = basis.mass[v] * phi[(v, i)];
-                    for j in 0..k {
-                        c[(i, j)] += a * phi[(map[v], j)];
-                    }
-                }
-            }
-            let target = &phi * &c;
-            for v in 0..n {
-                let mut best = (f64::MAX, 0);
-                for w in 0..n {
-                    let mut d = 0.0;
-                    for j in 0..k {
-                        d += (phi[(w, j)] - target[(v, j)]).powi(2);
-                    }
-                    if d < best.0 {
-                        best = (d, w);
-                    }
-                }
-                map[v] = best.1;
-            }
-            if k >= 100 {
-                break;
-            }
-            k = (k + 5).max(k * 23 / 20).min(100);
-            if k == 30 || k == 60 {
-                let zm: Vec<i64> = map.iter().map(|&w| w as i64).collect();
-                println!("  exact zoomout from truth at k={k}: acc {}", acc(&zm));
-            }
-        }
-        let zm: Vec<i64> = map.iter().map(|&w| w as i64).collect();
-        println!("EXACT zoomout 10→100 from truth: acc {}", acc(&zm));
-    }
-    {
-        // Geodesic (edge Dijkstra) profile matching from the TRUE anchors, exhaustive search.
-        let n = mesh.num_vertices();
-        let (off, nbr) = mesh.adjacency();
-        let dijkstra = |src: usize| -> Vec<f64> {
-            let mut d = vec![f64::INFINITY; n];
-            let mut heap = std::collections::BinaryHeap::new();
-            d[src] = 0.0;
-            heap.push((std::cmp::Reverse(0u64), src));
-            while let Some((std::cmp::Reverse(dk), v)) = heap.pop() {
-                let dv = f64::from_bits(dk);
-                if dv > d[v] {
-                    continue;
-                }
-                for &u in &nbr[off[v]..off[v + 1]] {
-                    let u = u as usize;
-                    let p = mesh.vertices[v];
-                    let q = mesh.vertices[u];
-                    let nd = dv + ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) + (p[2] - q[2]).powi(2)).sqrt();
-                    if nd < d[u] {
-                        d[u] = nd;
-                        heap.push((std::cmp::Reverse(nd.to_bits()), u));
-                    }
-                }
-            }
-            d
-        };
-        let ga: Vec<Vec<f64>> = true_anchors.iter().map(|a| dijkstra(a.0)).collect();
-        let gb: Vec<Vec<f64>> = true_anchors.iter().map(|a| dijkstra(a.1)).collect();
-        for kk in [8, 16, 32] {
-            let map: Vec<i64> = (0..n)
-                .map(|v| {
-                    let mut near: Vec<(f64, usize)> = ga.iter().enumerate().map(|(i, g)| (g[v], i)).collect();
-                    near.sort_by(|a, b| a.0.total_cmp(&b.0));
-                    near.truncate(kk);
-                    let mut best = (f64::MAX, 0);
-                    for w in 0..n {
-                        let c: f64 = near.iter().map(|&(d, i)| (d - gb[i][w]).abs()).sum();
-                        if c < best.0 {
-                            best = (c, w);
-                        }
-                    }
-                    best.1 as i64
-                })
-                .collect();
-            println!("GEODESIC profile ({kk} nearest) from TRUE anchors: acc {}", acc(&map));
-            let mut image: Vec<usize> = map.iter().map(|&w| w as usize).collect();
-            maps::zoomout(&basis, &ctx.adjacency, &mut image, 60, 100, 5);
-            let zm: Vec<i64> = image.iter().map(|&w| w as i64).collect();
-            println!("  + zoomout 60→100: acc {}", acc(&zm));
-        }
-    }
-    for k0 in [6, 12, 20] {
-        let c0 = maps::spectral_init::robust_fit(&basis, &true_anchors, k0);
-        let mut image = maps::spectral_init::point_map(&basis, &ctx.adjacency, &c0, &ctx.search);
-        let pm: Vec<i64> = image.iter().map(|&w| w as i64).collect();
-        let before = acc(&pm);
+    let start: Vec<usize> = (0..n).map(|v| if truth[v] != usize::MAX { truth[v] } else { v }).collect();
+    for k0 in [10, 100] {
+        let mut image = start.clone();
         maps::zoomout(&basis, &ctx.adjacency, &mut image, k0, 100, 5);
-        let zm: Vec<i64> = image.iter().map(|&w| w as i64).collect();
-        println!("spectral fit k0={k0} to TRUE anchors: {before}, + zoomout {}", acc(&zm));
+        println!("ZoomOut {k0} → 100 started from the true map: {}", acc(&image));
     }
-    maps::zoomout(&basis, &ctx.adjacency, &mut image, 100, 100, 5);
-    let zm: Vec<i64> = image.iter().map(|&w| w as i64).collect();
-    println!("zoomout at 100 from truth: acc {}", acc(&zm));
-    for tol in [0.03] {
-        let t = std::time::Instant::now();
-        let Some(p) = maps::profile_map(&ctx, &anchors, &samples, tol * diameter, &params.maps) else { continue };
-        let pm: Vec<i64> = p.image.iter().map(|&w| w as i64).collect();
-        println!("profile from own images, tol {tol}: acc {} ({} anchors, {:.2} s)", acc(&pm), p.anchors.len(), t.elapsed().as_secs_f64());
-        let mut image = p.image.clone();
-        maps::zoomout(&basis, &ctx.adjacency, &mut image, 10, 100, 5);
-        let zm: Vec<i64> = image.iter().map(|&w| w as i64).collect();
-        println!("  + zoomout 10→100: acc {}", acc(&zm));
-    }
+    let true_map = maps::DenseMap {
+        map: start.iter().map(|&w| w as i64).collect(),
+        confidence: vec![1.0; n],
+        mismatch: vec![0.0; n],
+        anchors: Vec::new(),
+        region_size: n,
+        global: true,
+        refined: true,
+        image: start.clone(),
+    };
+    // One polish pass from the true map: every sample pair is right, so this is the geodesic
+    // dense matching alone.
+    let mut geodesics = maps::geodesic::Geodesics::new(&ctx);
+    let polished = maps::geodesic::polish(&ctx, &mut geodesics, &true_map, &samples, &params.maps);
+    println!("geodesic profile map from the true sample pairs: {}", acc(&polished.image));
 }

@@ -357,9 +357,11 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
     // are preserved far more precisely than biharmonic ones or low eigenfunctions.
     if params.maps.polish > 0 {
         let mut geodesics = maps::geodesic::Geodesics::new(&ctx);
+        // Farthest-point sampling is incremental: these extend voting's samples.
+        let anchors = farthest_point(&emb, params.maps.polish_samples.max(params.samples), params.seed).vertices;
         for f in found.iter_mut() {
             for _ in 0..params.maps.polish {
-                f.dense = maps::geodesic::polish(&ctx, &mut geodesics, &f.dense, probes, &params.maps);
+                f.dense = maps::geodesic::polish(&ctx, &mut geodesics, &f.dense, &anchors, &params.maps);
             }
             f.distortion = characterize::sample_distortion(&f.dense.map, probes, &emb, vinfo.diameter);
         }
