@@ -151,16 +151,7 @@ pub fn experiments(mesh: &Mesh, pairs: &[(usize, Vec<usize>)]) {
         maps::zoomout(&basis, &ctx.adjacency, &mut image, k0, 100, 5);
         println!("ZoomOut {k0} → 100 started from the true map: {}", acc(&image));
     }
-    let true_map = maps::DenseMap {
-        map: start.iter().map(|&w| w as i64).collect(),
-        confidence: vec![1.0; n],
-        mismatch: vec![0.0; n],
-        anchors: Vec::new(),
-        region_size: n,
-        global: true,
-        refined: true,
-        image: start.clone(),
-    };
+    let true_map = maps::DenseMap::from_image(start);
     // One polish pass from the true map: every sample pair is right, so this is the geodesic
     // dense matching alone.
     let mut geodesics = maps::geodesic::Geodesics::new(&ctx);

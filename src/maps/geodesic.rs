@@ -288,16 +288,7 @@ mod tests {
         let params = MapParams::default();
         let ctx = Context::new(&c.mesh, &emb, &desc, diameter, &params);
         let image: Vec<usize> = (0..n).map(|v| if c.limb[v] == 0 { v } else { c.mirror[v] as usize }).collect();
-        let wrong = DenseMap {
-            map: image.iter().map(|&w| w as i64).collect(),
-            confidence: vec![1.0; n],
-            mismatch: vec![0.0; n],
-            anchors: Vec::new(),
-            region_size: n,
-            global: true,
-            refined: true,
-            image,
-        };
+        let wrong = DenseMap::from_image(image);
         let truth: Vec<(usize, Vec<usize>)> = (0..n).map(|v| (v, vec![c.mirror[v] as usize])).collect();
         let leg: Vec<(usize, Vec<usize>)> = truth.iter().filter(|t| c.limb[t.0] == 0).cloned().collect();
         let before = crate::eval::accuracy(&c.mesh, &wrong.map, &leg, &[0.05])[0];

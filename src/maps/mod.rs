@@ -109,6 +109,24 @@ pub struct DenseMap {
     pub image: Vec<usize>,
 }
 
+impl DenseMap {
+    /// A global map defined by every vertex's image, with full confidence and no anchors (for
+    /// starting the refinements from a known map).
+    pub fn from_image(image: Vec<usize>) -> DenseMap {
+        let n = image.len();
+        DenseMap {
+            map: image.iter().map(|&w| w as i64).collect(),
+            confidence: vec![1.0; n],
+            mismatch: vec![0.0; n],
+            anchors: Vec::new(),
+            region_size: n,
+            global: true,
+            refined: true,
+            image,
+        }
+    }
+}
+
 /// Precomputed geometry shared by every candidate's extraction.
 pub struct Context<'a> {
     /// The mesh.
