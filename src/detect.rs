@@ -360,6 +360,9 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
         // Farthest-point sampling is incremental: these extend voting's samples.
         let anchors = farthest_point(&emb, params.maps.polish_samples.max(params.samples), params.seed).vertices;
         for f in found.iter_mut() {
+            if !progress(0.95) {
+                return Err(cancelled());
+            }
             for _ in 0..params.maps.polish {
                 f.dense = maps::geodesic::polish(&ctx, &mut geodesics, &f.dense, &anchors, &params.maps);
             }
