@@ -9,6 +9,7 @@
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 
+use crate::maps::geodesic::EdgeGraph;
 use crate::mesh::Mesh;
 
 #[derive(PartialEq)]
@@ -27,9 +28,7 @@ impl Ord for Item {
 
 /// Edge-graph geodesic distances, bounded: a reusable Dijkstra workspace.
 pub struct Geodesics {
-    off: Vec<usize>,
-    nbr: Vec<u32>,
-    len: Vec<f64>,
+    graph: EdgeGraph,
     dist: Vec<f64>,
     touched: Vec<u32>,
     /// Vertex positions: the straight-line distance bounds an edge path from below.
@@ -39,16 +38,8 @@ pub struct Geodesics {
 impl Geodesics {
     /// Prepares the edge graph of `mesh`.
     pub fn new(mesh: &Mesh) -> Self {
-        let (off, nbr) = mesh.adjacency();
-        let mut len = Vec::with_capacity(nbr.len());
-        for v in 0..mesh.num_vertices() {
-            for &u in &nbr[off[v]..off[v + 1]] {
-                let (p, q) = (mesh.vertices[v], mesh.vertices[u as usize]);
-                len.push(((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) + (p[2] - q[2]).powi(2)).sqrt());
-            }
-        }
         let n = mesh.num_vertices();
-        Geodesics { off, nbr, len, dist: vec![f64::INFINITY; n], touched: Vec::new(), points: mesh.vertices.clone() }
+        Geodesics { graph: EdgeGraph::new(mesh, mesh.adjacency()), dist: vec![f64::INFINITY; n], touched: Vec::new(), points: mesh.vertices.clone() }
     }
 
     /// Distance from `a` to `b`, or `f64::INFINITY` when it exceeds `limit`.
@@ -75,9 +66,10 @@ impl Geodesics {
             if d > self.dist[v] || d > limit {
                 continue;
             }
-            for e in self.off[v]..self.off[v + 1] {
-                let u = self.nbr[e] as usize;
-                let nd = d + self.len[e];
+            let g = &self.graph;
+            for e in g.off[v]..g.off[v + 1] {
+                let u = g.nbr[e] as usize;
+                let nd = d + g.len[e];
                 if nd < self.dist[u] && nd <= limit {
                     if self.dist[u].is_infinite() {
                         self.touched.push(u as u32);

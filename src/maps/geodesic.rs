@@ -26,19 +26,21 @@ use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 
 use super::{Context, DenseMap, MapParams};
+use crate::mesh::Mesh;
 
-/// Edge graph of the mesh with edge lengths (CSR, the order of [`Context::adjacency`]).
+/// Edge graph of a mesh with edge lengths (CSR): the graph of every Dijkstra search here and of
+/// the evaluation's geodesics ([`crate::eval::Geodesics`]).
 pub struct EdgeGraph {
-    off: Vec<usize>,
-    nbr: Vec<u32>,
-    len: Vec<f64>,
+    pub(crate) off: Vec<usize>,
+    pub(crate) nbr: Vec<u32>,
+    pub(crate) len: Vec<f64>,
 }
 
 impl EdgeGraph {
-    /// The graph of `ctx`'s mesh.
-    pub fn new(ctx: &Context<'_>) -> Self {
-        let (off, nbr) = ctx.adjacency.clone();
-        let p = &ctx.mesh.vertices;
+    /// The graph of `mesh` with its CSR `adjacency` ([`Mesh::adjacency`]).
+    pub fn new(mesh: &Mesh, adjacency: (Vec<usize>, Vec<u32>)) -> Self {
+        let (off, nbr) = adjacency;
+        let p = &mesh.vertices;
         let mut len = Vec::with_capacity(nbr.len());
         for v in 0..off.len() - 1 {
             for &u in &nbr[off[v]..off[v + 1]] {
@@ -86,7 +88,7 @@ pub struct Geodesics {
 impl Geodesics {
     /// An empty cache on `ctx`'s mesh.
     pub fn new(ctx: &Context<'_>) -> Self {
-        Geodesics { graph: EdgeGraph::new(ctx), columns: Default::default() }
+        Geodesics { graph: EdgeGraph::new(ctx.mesh, ctx.adjacency.clone()), columns: Default::default() }
     }
 
     /// `(n · s)` row-major distances from the `s` sources (a vertex's distances contiguous);
@@ -109,16 +111,6 @@ impl Geodesics {
             }
         }
         t
-    }
-}
-
-/// Anchors nearer to a vertex than the rest, by geodesic distance (`K` of them).
-fn nearest(row: &[f64], keep: &[usize], k: usize, out: &mut Vec<(usize, f64)>) {
-    out.clear();
-    out.extend(keep.iter().map(|&j| (j, row[j])));
-    if out.len() > k {
-        out.select_nth_unstable_by(k - 1, |a, b| a.1.total_cmp(&b.1));
-        out.truncate(k);
     }
 }
 
@@ -167,7 +159,8 @@ pub fn polish(ctx: &Context<'_>, geodesics: &mut Geodesics, m: &DenseMap, sample
     }
     let mut anchors: Vec<usize> = trusted.clone();
     for i in (0..s).filter(|&i| !is_trusted[i]) {
-        nearest(&ga[src[i] * s..(src[i] + 1) * s], &trusted, k, &mut profile);
+        let row = &ga[src[i] * s..(src[i] + 1) * s];
+        super::nearest_profile(|j| row[j], trusted.iter().copied(), k, &mut profile);
         let c = |w: usize| cost(&profile, &gb0, s, w);
         let w = super::multi_start(ctx, c);
         let (w, cw) = super::descend_by(ctx, w, c);
@@ -193,7 +186,8 @@ pub fn polish(ctx: &Context<'_>, geodesics: &mut Geodesics, m: &DenseMap, sample
         }
     }
     while let Some(v) = queue.pop_front() {
-        nearest(&ga[v * s..(v + 1) * s], &anchors, k, &mut profile);
+        let row = &ga[v * s..(v + 1) * s];
+        super::nearest_profile(|j| row[j], anchors.iter().copied(), k, &mut profile);
         let c = |w: usize| cost(&profile, &gb, s, w);
         let near = profile.iter().fold(profile[0], |b, &p| if p.1 < b.1 { p } else { b }).0;
         let mut start = (image[v], c(image[v]));
@@ -258,7 +252,7 @@ mod tests {
         let emb = biharmonic(&basis);
         let desc = wks(&basis, &WksParams::default());
         let ctx = Context::new(&c.mesh, &emb, &desc, 1.0, &MapParams::default());
-        let g = EdgeGraph::new(&ctx);
+        let g = EdgeGraph::new(ctx.mesh, ctx.adjacency.clone());
         let d0 = g.distances(0);
         let p = &c.mesh.vertices;
         for v in 0..c.mesh.num_vertices() {

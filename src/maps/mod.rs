@@ -190,10 +190,11 @@ fn robust_mismatch(profile: &[(usize, f64)], dst: &Mat<f64>, w: usize, scratch: 
     scratch[..keep].iter().sum::<f64>() / keep as f64
 }
 
-/// The `k` anchors nearest to a vertex, from its distances to all anchor sources.
-fn nearest_profile(dist: impl Fn(usize) -> f64, anchors: usize, k: usize, out: &mut Vec<(usize, f64)>) {
+/// The `k` anchors nearest to a vertex among `candidates`, from its distance to each anchor
+/// (`dist(i)`): `(anchor, distance)` pairs in `out`.
+fn nearest_profile(dist: impl Fn(usize) -> f64, candidates: impl IntoIterator<Item = usize>, k: usize, out: &mut Vec<(usize, f64)>) {
     out.clear();
-    out.extend((0..anchors).map(|i| (i, dist(i))));
+    out.extend(candidates.into_iter().map(|i| (i, dist(i))));
     if out.len() > k {
         out.select_nth_unstable_by(k - 1, |a, b| a.1.total_cmp(&b.1));
         out.truncate(k);
@@ -412,7 +413,7 @@ fn profile_images(
             // are coarse and partly wrong); later rounds on the nearest anchors.
             let robust = round == 0;
             let k = if robust { src.len() } else { params.local_anchors };
-            nearest_profile(|i| sd[(si, i)], src.len(), k, &mut profile);
+            nearest_profile(|i| sd[(si, i)], 0..src.len(), k, &mut profile);
             let mut cost = |w: usize| if robust { robust_mismatch(&profile, &dst, w, &mut scratch) } else { mismatch(&profile, &dst, w) };
             // Start: the previous round's image, else the best strided vertex (coarse search),
             // or the candidate's own target if x is an anchor and that fits better.
@@ -454,7 +455,7 @@ fn profile_images(
     }
     let mut profile = Vec::new();
     while let Some(v) = queue.pop_front() {
-        nearest_profile(|i| dsrc[(v, i)], src.len(), params.local_anchors, &mut profile);
+        nearest_profile(|i| dsrc[(v, i)], 0..src.len(), params.local_anchors, &mut profile);
         let nearest = profile.iter().fold(profile[0], |b, &p| if p.1 < b.1 { p } else { b }).0;
         let mut start = dst_v[nearest];
         let mut start_c = mismatch(&profile, &ddst, start);
@@ -490,7 +491,7 @@ fn finish(ctx: &Context<'_>, anchors: Vec<(usize, usize)>, image: Vec<usize>, pa
     let mut profile = Vec::new();
     let mismatch_of: Vec<f64> = (0..n)
         .map(|v| {
-            nearest_profile(|i| dsrc[(v, i)], src.len(), params.local_anchors, &mut profile);
+            nearest_profile(|i| dsrc[(v, i)], 0..src.len(), params.local_anchors, &mut profile);
             mismatch(&profile, &ddst, image[v])
         })
         .collect();
