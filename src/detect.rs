@@ -366,7 +366,9 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
             for _ in 0..params.maps.polish {
                 f.dense = maps::geodesic::polish(&ctx, &mut geodesics, &f.dense, &anchors, &params.maps);
             }
+            // The map changed: so did its distortion and its functional map.
             f.distortion = characterize::sample_distortion(&f.dense.map, probes, &emb, vinfo.diameter);
+            f.complexity = characterize::complexity(&maps::functional_map(&basis, &f.dense.map, params.maps.fmap_size), params.complexity_width);
         }
     }
     // Phase 3 (beyond the paper): the symmetries of a shape form a group, so the composition of
