@@ -1,14 +1,15 @@
 //! `intrinsym-eval`: the evaluation protocol of DESIGN.md on shapes with known symmetry.
 //!
 //! ```text
-//! intrinsym-eval [--data DIR] [--generated] [--only NAME]
+//! intrinsym-eval [--data DIR] [--generated] [--only NAME] [--set KEY=VALUE]...
 //! ```
 //! For every `NAME.off` with a `NAME.sym.txt` (two 0-based columns `x  sym_x`) under DIR
 //! (default `../shared/data`, searched recursively one level), runs detection with default
 //! parameters and scores the best-matching detected symmetry: accuracy@r = fraction of the
 //! ground-truth pairs whose predicted image is within geodesic distance r·√area of the true one
 //! (edge-graph Dijkstra; unmapped counts as wrong). `--generated` also scores the generated
-//! shapes (posed and noisy quadrupeds, star). Prints a Markdown table.
+//! shapes (posed and noisy quadrupeds, star). Prints a Markdown table. `--set` overrides one
+//! parameter for an experiment (keys: see [`set_param`]).
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -27,14 +28,42 @@ struct Row {
     rank: usize,
 }
 
-fn score(name: &str, mesh: &Mesh, truth: &[(usize, Vec<usize>)]) -> Row {
-    score_all(mesh, &[(name.to_string(), truth.to_vec())]).remove(0)
+fn score(name: &str, mesh: &Mesh, truth: &[(usize, Vec<usize>)], params: &Params) -> Row {
+    score_all(mesh, &[(name.to_string(), truth.to_vec())], params).remove(0)
+}
+
+/// Sets one parameter from `key=value`.
+fn set_param(p: &mut Params, kv: &str) -> Result<(), String> {
+    let (key, value) = kv.split_once('=').ok_or_else(|| format!("--set wants KEY=VALUE, got {kv}"))?;
+    let f = || value.parse::<f64>().map_err(|e| format!("{key}: {e}"));
+    let u = || value.parse::<usize>().map_err(|e| format!("{key}: {e}"));
+    match key {
+        "k" => p.eigen.k = u()?,
+        "samples" => p.samples = u()?,
+        "seed" => p.seed = u()? as u64,
+        "eps" => p.voting.eps = f()?,
+        "wks_quantile" => p.voting.wks_quantile = f()?,
+        "max_distortion" => p.max_distortion = f()?,
+        "max_candidates" => p.max_candidates = u()?,
+        "max_refinements" => p.max_refinements = u()?,
+        "patience" => p.patience = u()?,
+        "accept" => p.maps.accept = f()?,
+        "zoomout_k" => p.maps.zoomout_k = u()?,
+        "spectral_start" => p.maps.spectral_start = u()?,
+        "polish" => p.maps.polish = u()?,
+        "polish_samples" => p.maps.polish_samples = u()?,
+        "local_anchors" => p.maps.local_anchors = u()?,
+        "search_vertices" => p.maps.search_vertices = u()?,
+        "global_fraction" => p.maps.global_fraction = f()?,
+        _ => return Err(format!("unknown parameter {key}")),
+    }
+    Ok(())
 }
 
 /// One detection, scored against each of several known symmetries (a row each).
-fn score_all(mesh: &Mesh, truths: &[(String, Vec<(usize, Vec<usize>)>)]) -> Vec<Row> {
+fn score_all(mesh: &Mesh, truths: &[(String, Vec<(usize, Vec<usize>)>)], params: &Params) -> Vec<Row> {
     let t = Instant::now();
-    let det = detect(mesh, &Params::default(), &mut |_| true);
+    let det = detect(mesh, params, &mut |_| true);
     let seconds = t.elapsed().as_secs_f64();
     let found = det.as_ref().map_or(0, |d| d.symmetries.len());
     truths
@@ -76,6 +105,7 @@ fn main() {
     let mut data = PathBuf::from("../shared/data");
     let mut generated = false;
     let mut only: Option<String> = None;
+    let mut params = Params::default();
     let mut i = 1;
     while i < args.len() {
         match args[i].as_str() {
@@ -88,8 +118,15 @@ fn main() {
                 i += 1;
                 only = Some(args[i].clone());
             }
+            "--set" => {
+                i += 1;
+                if let Err(e) = args.get(i).ok_or_else(|| "--set wants KEY=VALUE".to_string()).and_then(|kv| set_param(&mut params, kv)) {
+                    eprintln!("intrinsym-eval: {e}");
+                    std::process::exit(2);
+                }
+            }
             other => {
-                eprintln!("usage: intrinsym-eval [--data DIR] [--generated] [--only NAME] (unknown {other})");
+                eprintln!("usage: intrinsym-eval [--data DIR] [--generated] [--only NAME] [--set KEY=VALUE]... (unknown {other})");
                 std::process::exit(2);
             }
         }
@@ -145,7 +182,7 @@ fn main() {
             .filter(|(a, b)| *a < to_mesh.len() && b[0] < to_mesh.len() && to_mesh[*a] != usize::MAX && to_mesh[b[0]] != usize::MAX)
             .map(|(a, b)| (to_mesh[a], vec![to_mesh[b[0]]]))
             .collect();
-        let r = score(&name, &mesh, &truth);
+        let r = score(&name, &mesh, &truth, &params);
         print(&r);
         rows.push(r);
     }
@@ -161,7 +198,7 @@ fn main() {
                 continue;
             }
             let truth: Vec<(usize, Vec<usize>)> = (0..c.mesh.num_vertices()).map(|v| (v, vec![c.mirror[v] as usize])).collect();
-            let r = score(name, &c.mesh, &truth);
+            let r = score(name, &c.mesh, &truth, &params);
             print(&r);
             rows.push(r);
         }
@@ -172,7 +209,7 @@ fn main() {
                 .into_iter()
                 .map(|(name, map)| (format!("star, 5 arms: {name}"), map.iter().enumerate().map(|(v, &w)| (v, vec![w as usize])).collect()))
                 .collect();
-            for r in score_all(&c.mesh, &truths) {
+            for r in score_all(&c.mesh, &truths, &params) {
                 print(&r);
                 rows.push(r);
             }
