@@ -14,10 +14,23 @@
 //!    `accept · D` (`D` the geodesic diameter): a part the map got wrong (a head turned the
 //!    wrong way) is inconsistent with the rest of the body. Every other sample is matched
 //!    again against the trusted anchors (coarse search and descent, as in anchor refinement).
+//!    When the map is an involution (a reflection: `T(b_i) ≈ a_i` for most anchors), the
+//!    reversed pairs `(b_i, a_i)` are anchors too: twice as dense a set, from the same searches.
 //! 2. **Dense map.** Each vertex `v` moves to the minimiser of
-//!    `c_v(w) = (1/K) Σ_{i ∈ A_v} |g(v, a_i) − g(w, b_i)|` over its `K` nearest anchors `A_v`,
-//!    by greedy descent on the mesh graph from its current image, its nearest anchor's image
-//!    and its neighbours' images.
+//!    `c_v(w) = (1/K) Σ_{i ∈ A_v} |g(v, a_i) − g(w, b_i)|` over its `K` nearest anchors `A_v`
+//!    other than itself (an anchor is not evidence for its own image, so one that is off moves
+//!    with its neighbours and the next pass starts from the moved image), by greedy descent on
+//!    the mesh graph from its current image, its nearest anchor's image and its neighbours'
+//!    images.
+//! 3. **Region**, judged on geodesics: `{v : c_v(T v) ≤ accept·D and δ_WKS(v, T v) ≤
+//!    wks_accept}`; a partial map whose region now covers `global_fraction` of the shape
+//!    becomes global (defined everywhere), a global map stays global.
+//!
+//! Measured on TOSCA (acc@0.05, posed mean / null mean): session 3's polish 86.4 / 96.2%;
+//! region on geodesics 87.3%; with reversed anchors 88.8 / 97.0%; leaving the anchor out 89.0 /
+//! 97.5%. Tried and dropped: Dijkstra on the edge graph plus the unfolded diagonal across every
+//! edge (a less biased geodesic) lost 0.8 points on average; adding 4 or 8 far anchors to each
+//! profile (against a twist of a limb about its axis) changed nothing.
 //!
 //! Geodesics are Dijkstra distances on the edge graph (a slight overestimate of the surface
 //! distance that largely cancels in the differences), one search per anchor, on all cores.
@@ -120,8 +133,8 @@ fn cost(profile: &[(usize, f64)], dst: &[f64], s: usize, w: usize) -> f64 {
     profile.iter().map(|&(j, d)| (d - row[j]).abs()).sum::<f64>() / profile.len() as f64
 }
 
-/// The geodesic polish of a global map (see the module docs); `samples` are the anchor
-/// candidates. Returns the map unchanged when fewer than 3 sample pairs are consistent.
+/// The geodesic polish of a map (see the module docs); `samples` are the anchor candidates.
+/// Returns the map unchanged when fewer than 3 sample pairs are consistent.
 pub fn polish(ctx: &Context<'_>, geodesics: &mut Geodesics, m: &DenseMap, samples: &[usize], params: &MapParams) -> DenseMap {
     let n = ctx.mesh.num_vertices();
     let k = params.local_anchors;
@@ -172,6 +185,30 @@ pub fn polish(ctx: &Context<'_>, geodesics: &mut Geodesics, m: &DenseMap, sample
     anchors.sort_unstable();
     // Distances from the new targets (the trusted ones are unchanged).
     let gb = if dst == dst0 { gb0 } else { geodesics.table(&dst) };
+    let returned: Vec<(usize, usize)> = anchors.iter().map(|&i| (src[i], dst[i])).collect();
+    // An involution (a reflection: T∘T = id) also maps each target back to its source, so the
+    // reversed pairs are anchors too: twice as many, at no extra search.
+    let involution = {
+        let back = anchors.iter().filter(|&&i| ga[m.image[dst[i]] * s + i] <= tol).count();
+        2 * back >= anchors.len()
+    };
+    let (ga, gb, s, src, dst, anchors) = if involution {
+        let s2 = 2 * s;
+        let mut ga2 = vec![0.0; n * s2];
+        let mut gb2 = vec![0.0; n * s2];
+        for v in 0..n {
+            ga2[v * s2..v * s2 + s].copy_from_slice(&ga[v * s..(v + 1) * s]);
+            ga2[v * s2 + s..(v + 1) * s2].copy_from_slice(&gb[v * s..(v + 1) * s]);
+            gb2[v * s2..v * s2 + s].copy_from_slice(&gb[v * s..(v + 1) * s]);
+            gb2[v * s2 + s..(v + 1) * s2].copy_from_slice(&ga[v * s..(v + 1) * s]);
+        }
+        let src2: Vec<usize> = src.iter().chain(&dst).copied().collect();
+        let dst2: Vec<usize> = dst.iter().chain(&src).copied().collect();
+        let anchors2: Vec<usize> = anchors.iter().copied().chain(anchors.iter().map(|&i| i + s)).collect();
+        (ga2, gb2, s2, src2, dst2, anchors2)
+    } else {
+        (ga, gb, s, src, dst, anchors)
+    };
 
     // 2. Dense map, breadth-first from the anchors so neighbours' images are good starts.
     let mut image = m.image.clone();
@@ -187,7 +224,9 @@ pub fn polish(ctx: &Context<'_>, geodesics: &mut Geodesics, m: &DenseMap, sample
     }
     while let Some(v) = queue.pop_front() {
         let row = &ga[v * s..(v + 1) * s];
-        super::nearest_profile(|j| row[j], anchors.iter().copied(), k, &mut profile);
+        // Leave one out: an anchor is not evidence for its own image, so an anchor that is off
+        // moves with its neighbours' evidence (and the next pass takes the moved image).
+        super::nearest_profile(|j| row[j], anchors.iter().copied().filter(|&j| src[j] != v), k, &mut profile);
         let c = |w: usize| cost(&profile, &gb, s, w);
         let near = profile.iter().fold(profile[0], |b, &p| if p.1 < b.1 { p } else { b }).0;
         let mut start = (image[v], c(image[v]));
@@ -214,22 +253,33 @@ pub fn polish(ctx: &Context<'_>, geodesics: &mut Geodesics, m: &DenseMap, sample
             }
         }
     }
+    // The region, judged on geodesics now: the vertices whose distances the map preserves and
+    // whose local geometry (WKS) it keeps. A partial map that the polish extended over
+    // `global_fraction` of the shape becomes global; a global one stays global.
+    let inside: Vec<bool> = (0..n).map(|v| done[v] && mismatch[v] <= tol && ctx.wks_distance(v, image[v]) <= params.wks_accept).collect();
+    let global = m.global || inside.iter().filter(|&&x| x).count() as f64 >= params.global_fraction * n as f64;
     // Vertices the search did not reach (other components) keep their image.
     let mut map = m.map.clone();
     let mut confidence = m.confidence.clone();
     for v in 0..n {
-        if done[v] && (m.global || m.map[v] >= 0) {
-            map[v] = image[v] as i64;
-            confidence[v] = (1.0 - mismatch[v] / tol).clamp(0.0, 1.0);
+        if done[v] {
+            if global || inside[v] {
+                map[v] = image[v] as i64;
+                confidence[v] = (1.0 - mismatch[v] / tol).clamp(0.0, 1.0);
+            } else {
+                map[v] = -1;
+                confidence[v] = 0.0;
+            }
         }
     }
+    let region_size = map.iter().filter(|&&t| t >= 0).count();
     DenseMap {
         map,
         confidence,
         mismatch,
-        anchors: anchors.iter().map(|&i| (src[i], dst[i])).collect(),
-        region_size: m.region_size,
-        global: m.global,
+        anchors: returned,
+        region_size,
+        global,
         refined: m.refined,
         image,
     }
