@@ -2,7 +2,7 @@
 //! against the left–right mirror, where each leg's vertices go, and the best acc@0.1 of each
 //! ordered leg → leg map.
 //!
-//! `cargo run --release --example experiment [NOISE] [rest]` with `LEVEL` (icosphere level,
+//! `cargo run --release --example quadruped_report [NOISE] [rest]` with `LEVEL` (icosphere level,
 //! default 5), `SEED` (noise seed), and overrides `EPS`, `ACCEPT`, `DIST`, `MAXC`, `MAXR`.
 use intrinsym::shapes::{self, Pose};
 use intrinsym::{detect, eval, Params};

@@ -53,11 +53,14 @@ fn posed_quadruped_mirror() {
     let identity: Vec<(usize, Vec<usize>)> = (0..s.map.len()).map(|v| (v, vec![v])).collect();
     let round_trip = eval::accuracy(&c.mesh, &back, &identity, &[0.05])[0];
     assert!(round_trip >= 0.9, "T∘T within 0.05√A for {round_trip}");
-    // The left–right leg maps are found (each ordered pair by the mirror); measured 0.72–0.94
-    // at acc@0.1 (the issue's 0.8 is met by three of the four: a bent hind leg is the worst).
-    for (i, j) in [(0, 1), (1, 0), (2, 3), (3, 2)] {
-        let best = d.symmetries.iter().map(|s| eval::accuracy(&c.mesh, &s.map, &c.limb_truth(i, j), &[0.1])[0]).fold(0.0, f64::max);
-        assert!(best >= 0.65, "leg {i} -> leg {j}: {best}");
+    // Every one of the 12 ordered leg → leg maps is covered by a reported symmetry: left↔right
+    // by the mirror, front↔hind by the front↔back near-symmetry, the diagonals by their
+    // composition. Measured 0.85–1.00 at acc@0.1 (the issue asks 0.8).
+    for i in 0..4 {
+        for j in (0..4).filter(|&j| j != i) {
+            let best = d.symmetries.iter().map(|s| eval::accuracy(&c.mesh, &s.map, &c.limb_truth(i, j), &[0.1])[0]).fold(0.0, f64::max);
+            assert!(best >= 0.75, "leg {i} -> leg {j}: {best}");
+        }
     }
 }
 

@@ -248,10 +248,16 @@ pub fn creature(level: u32, body: [f64; 3], limbs: &[Limb], noise: f64, seed: u6
 }
 
 impl Creature {
-    /// Ground truth of the partial symmetry "limb `i` → limb `j`" for limbs of equal shape: for
-    /// each vertex of limb `i`, the vertices of limb `j` at the same limb-local rest position,
-    /// and at its mirror across the limb's own plane (a limb is mirror-symmetric, so either
-    /// image is correct).
+    /// Ground truth of the partial symmetry "limb `i` → limb `j`" for limbs that are mirror
+    /// images of each other across the planes x = 0 and/or z = 0 of the rest shape (the four legs
+    /// of [`quadruped`]): for each vertex of limb `i`, the vertex of limb `j` nearest its image
+    /// under the reflection(s) `R` that carry limb `i` onto limb `j` (`R = diag(±1, 1, ±1)`,
+    /// read off the limbs' centroids), and the image under `R` composed with the limb's own
+    /// mirror across the plane x = const through its centroid (a leg is mirror-symmetric, so
+    /// either image is correct). For a left↔right pair these are the mirror and the
+    /// translation of the limb; for front↔hind and diagonal pairs the reflection in z (and x)
+    /// matters: a translation would map the front of a front leg to the front of a hind leg,
+    /// which no intrinsic symmetry of the shape does.
     pub fn limb_truth(&self, i: usize, j: usize) -> Vec<(usize, Vec<usize>)> {
         let base = |l: usize| {
             let vs: Vec<usize> = (0..self.rest.len()).filter(|&v| self.limb[v] == l).collect();
@@ -274,13 +280,15 @@ impl Creature {
                 })
                 .expect("limb j has vertices")
         };
+        // The reflection(s) carrying limb i onto limb j: flip x and/or z where the centroids
+        // lie on opposite sides.
+        let (rx, rz) = (if ci[0] * cj[0] < 0.0 { -1.0 } else { 1.0 }, if ci[2] * cj[2] < 0.0 { -1.0 } else { 1.0 });
         vi.iter()
             .map(|&v| {
                 let p = self.rest[v];
                 let local = [p[0] - ci[0], p[1] - ci[1], p[2] - ci[2]];
-                let same = nearest([cj[0] + local[0], cj[1] + local[1], cj[2] + local[2]]);
-                let flipped = nearest([cj[0] - local[0], cj[1] + local[1], cj[2] + local[2]]);
-                (v, vec![same, flipped])
+                let image = |fx: f64| nearest([cj[0] + rx * fx * local[0], cj[1] + local[1], cj[2] + rz * local[2]]);
+                (v, vec![image(1.0), image(-1.0)])
             })
             .collect()
     }
@@ -397,4 +405,42 @@ pub fn star(arms: usize, level: u32) -> Creature {
         })
         .collect();
     creature(level, [0.8, 0.35, 0.8], &limbs, 0.0, 0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The vertex of the rest shape nearest each vertex's reflection `diag(sx, 1, sz)`.
+    fn reflection(c: &Creature, sx: f64, sz: f64) -> Vec<i64> {
+        let p = &c.rest;
+        (0..p.len())
+            .map(|v| {
+                let q = [sx * p[v][0], p[v][1], sz * p[v][2]];
+                let d2 = |a: &[f64; 3]| (a[0] - q[0]).powi(2) + (a[1] - q[1]).powi(2) + (a[2] - q[2]).powi(2);
+                (0..p.len()).min_by(|&a, &b| d2(&p[a]).total_cmp(&d2(&p[b]))).unwrap() as i64
+            })
+            .collect()
+    }
+
+    /// The rest shape's reflections carry each leg onto the others, and the leg truth says so:
+    /// x → −x maps leg 0 onto leg 1, z → −z onto leg 2 (front ↔ hind), both onto leg 3. (The
+    /// first version of `limb_truth` translated a leg instead, which is right only for the
+    /// left–right pairs: the z reflection scored 0.4 on front ↔ hind there.)
+    #[test]
+    fn leg_truth_follows_the_reflections_of_the_rest_shape() {
+        let c = quadruped(3, Pose::Rest, 0.0, 0);
+        for (j, sx, sz) in [(1, -1.0, 1.0), (2, 1.0, -1.0), (3, -1.0, -1.0)] {
+            let map = reflection(&c, sx, sz);
+            for (i, jj) in [(0, j), (j, 0)] {
+                let truth = c.limb_truth(i, jj);
+                let exact = truth.iter().filter(|(v, img)| img.contains(&(map[*v] as usize))).count();
+                assert!(exact as f64 >= 0.97 * truth.len() as f64, "leg {i} -> {jj}: {exact} of {}", truth.len());
+            }
+        }
+        // A leg mapped onto the wrong leg is wrong.
+        let x = reflection(&c, -1.0, 1.0);
+        let truth = c.limb_truth(0, 2);
+        assert_eq!(truth.iter().filter(|(v, img)| img.contains(&(x[*v] as usize))).count(), 0);
+    }
 }
