@@ -371,6 +371,26 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
             f.complexity = characterize::complexity(&maps::functional_map(&basis, &f.dense.map, params.maps.fmap_size), params.complexity_width);
         }
     }
+    // The polish can bring two versions of one symmetry together (two candidates that were
+    // apart before it): report it once, in its better version.
+    let mut kept: Vec<Found> = Vec::with_capacity(found.len());
+    for f in found {
+        match kept.iter().position(|k| agrees(&k.dense, &f.dense, 0.8)) {
+            Some(i) => {
+                let k = &kept[i];
+                let better = if k.dense.global && f.dense.global {
+                    f.complexity < k.complexity
+                } else {
+                    (f.dense.region_size, -f.distortion) > (k.dense.region_size, -k.distortion)
+                };
+                if better {
+                    kept[i] = f;
+                }
+            }
+            None => kept.push(f),
+        }
+    }
+    let mut found = kept;
     // Phase 3 (beyond the paper): the symmetries of a shape form a group, so the composition of
     // two global symmetries is one too. Voting and the refinement budget find generators (two
     // mirrors of a five-armed star, a mirror and a rotation, …); compositions that move points,
