@@ -6,7 +6,8 @@
 //! candidate's map is kept when it moves points (displacement ≥ `min_displacement`, so the
 //! identity, which always fits the descriptors, is rejected), preserves distances (distortion ≤
 //! `max_distortion`), and is not the same map as a stronger one (agreement on ≥ 80% of the
-//! shared samples). Finally the set is closed under composition: the composition of two global
+//! shared samples; checked again after the geodesic polish, which can bring two versions of
+//! one symmetry together). Finally the set is closed under composition: the composition of two global
 //! symmetries that moves points, preserves distances and is new is reported too.
 
 use std::time::Instant;
