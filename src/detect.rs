@@ -153,8 +153,16 @@ pub struct Timings {
     pub sampling: f64,
     /// Correspondence space voting.
     pub voting: f64,
-    /// Dense maps.
+    /// Dense maps (all of the four below).
     pub maps: f64,
+    /// Of which: profile maps of the candidates.
+    pub maps_profile: f64,
+    /// Of which: ZoomOut refinement.
+    pub maps_refine: f64,
+    /// Of which: geodesic polish.
+    pub maps_polish: f64,
+    /// Of which: group completion by composition.
+    pub maps_compose: f64,
     /// Complexity, order, distortion.
     pub characterize: f64,
     /// Grouping.
@@ -258,6 +266,8 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
         Some((dense, anchors[0], distortion))
     };
     let mut profiled: Vec<(maps::DenseMap, (usize, usize), f64)> = crate::parallel::map(&ranked, profile).into_iter().flatten().collect();
+    timings.maps_profile = t.elapsed().as_secs_f64();
+    let t_stage = Instant::now();
     if !progress(0.8) {
         return Err(cancelled());
     }
@@ -356,6 +366,8 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
     }
     // Geodesic polish of every map (see `maps::geodesic`): on posed shapes geodesic distances
     // are preserved far more precisely than biharmonic ones or low eigenfunctions.
+    timings.maps_refine = t_stage.elapsed().as_secs_f64();
+    let t_stage = Instant::now();
     if params.maps.polish > 0 {
         let mut geodesics = maps::geodesic::Geodesics::new(&ctx);
         // Farthest-point sampling is incremental: these extend voting's samples.
@@ -392,6 +404,8 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
         }
     }
     let mut found = kept;
+    timings.maps_polish = t_stage.elapsed().as_secs_f64();
+    let t_stage = Instant::now();
     // Phase 3 (beyond the paper): the symmetries of a shape form a group, so the composition of
     // two global symmetries is one too. Voting and the refinement budget find generators (two
     // mirrors of a five-armed star, a mirror and a rotation, …); compositions that move points,
@@ -429,6 +443,7 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
             }
         }
     }
+    timings.maps_compose = t_stage.elapsed().as_secs_f64();
     timings.maps = t.elapsed().as_secs_f64();
 
     let t = Instant::now();

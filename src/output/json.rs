@@ -4,6 +4,7 @@
 //! { "vertices": n, "faces": m,
 //!   "params": { "eigenpairs", "samples", "seed", "wks_quantile", "eps", "accept", "polish", "groups" },
 //!   "timings": { "spectral", "descriptors", "distance", "sampling", "voting", "maps",
+//!                "maps_profile", "maps_refine", "maps_polish", "maps_compose",
 //!                "characterize", "cluster", "total" },           // seconds
 //!   "symmetries": [ { "id", "kind": "global"|"partial", "group", "order", "complexity",
 //!                     "distortion", "source", "target", "support_pairs": [[a, b], …],
@@ -64,6 +65,10 @@ pub fn to_json(det: &Detection, params: &Params) -> Value {
             "sampling": t.sampling,
             "voting": t.voting,
             "maps": t.maps,
+            "maps_profile": t.maps_profile,
+            "maps_refine": t.maps_refine,
+            "maps_polish": t.maps_polish,
+            "maps_compose": t.maps_compose,
             "characterize": t.characterize,
             "cluster": t.cluster,
             "total": t.total,
