@@ -372,16 +372,32 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
         let mut geodesics = maps::geodesic::Geodesics::new(&ctx);
         // Farthest-point sampling is incremental: these extend voting's samples.
         let anchors = farthest_point(&emb, params.maps.polish_samples.max(params.samples), params.seed).vertices;
-        for f in found.iter_mut() {
+        if !progress(0.95) {
+            return Err(cancelled());
+        }
+        // The samples are the sources of every global map: their table is built once.
+        geodesics.pin(&anchors);
+        let geodesics = &geodesics;
+        // Maps are polished independently, as many at a time as there are cores (the result
+        // does not depend on it), with a cancellation check between rounds.
+        let cores = std::thread::available_parallelism().map_or(1, |c| c.get());
+        for round in found.chunks_mut(cores) {
             if !progress(0.95) {
                 return Err(cancelled());
             }
-            for _ in 0..params.maps.polish {
-                f.dense = maps::geodesic::polish(&ctx, &mut geodesics, &f.dense, &anchors, &params.maps);
+            let polished = crate::parallel::map(round, |f: &Found| {
+                let mut dense = f.dense.clone();
+                for _ in 0..params.maps.polish {
+                    dense = maps::geodesic::polish(&ctx, geodesics, &dense, &anchors, &params.maps);
+                }
+                dense
+            });
+            for (f, dense) in round.iter_mut().zip(polished) {
+                f.dense = dense;
+                // The map changed: so did its distortion and its functional map.
+                f.distortion = characterize::sample_distortion(&f.dense.map, probes, &emb, vinfo.diameter);
+                f.complexity = characterize::complexity(&maps::functional_map(&basis, &f.dense.map, params.maps.fmap_size), params.complexity_width);
             }
-            // The map changed: so did its distortion and its functional map.
-            f.distortion = characterize::sample_distortion(&f.dense.map, probes, &emb, vinfo.diameter);
-            f.complexity = characterize::complexity(&maps::functional_map(&basis, &f.dense.map, params.maps.fmap_size), params.complexity_width);
         }
     }
     // The polish can bring two versions of one symmetry together (two candidates that were

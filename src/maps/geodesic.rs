@@ -46,7 +46,8 @@
 //! distance that largely cancels in the differences), one search per anchor, on all cores.
 
 use std::cmp::Reverse;
-use std::collections::BinaryHeap;
+use std::collections::{BinaryHeap, HashMap};
+use std::sync::{Arc, Mutex};
 
 use super::{Context, DenseMap, MapParams};
 use crate::mesh::Mesh;
@@ -80,7 +81,8 @@ impl EdgeGraph {
         let mut d = vec![f64::INFINITY; n];
         let mut heap = BinaryHeap::new();
         d[src] = 0.0;
-        // Non-negative f64s order like their bit patterns.
+        // Non-negative f64s order like their bit patterns. (A radix heap was tried: no faster
+        // on these meshes.)
         heap.push(Reverse((0u64, src as u32)));
         while let Some(Reverse((key, v))) = heap.pop() {
             let (dv, v) = (f64::from_bits(key), v as usize);
@@ -98,54 +100,120 @@ impl EdgeGraph {
         }
         d
     }
-
 }
 
 /// Distances from every vertex asked for so far: the samples are the sources of every map and
-/// a map's targets change little from one pass to the next, so each search runs once.
+/// a map's targets change little from one pass to the next, so each search runs once. Shared
+/// by maps polished concurrently (the cache is behind a lock; searches run outside it).
 pub struct Geodesics {
     graph: EdgeGraph,
-    columns: std::collections::HashMap<usize, std::sync::Arc<Vec<f64>>>,
+    columns: Mutex<HashMap<usize, Arc<Vec<f64>>>>,
+    /// The row-major table of the one source list every map shares (the samples).
+    pinned: Option<(Vec<usize>, Arc<Vec<f64>>)>,
 }
 
 impl Geodesics {
     /// An empty cache on `ctx`'s mesh.
     pub fn new(ctx: &Context<'_>) -> Self {
-        Geodesics { graph: EdgeGraph::new(ctx.mesh, ctx.adjacency.clone()), columns: Default::default() }
+        Geodesics { graph: EdgeGraph::new(ctx.mesh, ctx.adjacency.clone()), columns: Default::default(), pinned: None }
+    }
+
+    /// Builds the table of `sources` once, for every later table of the same list.
+    pub fn pin(&mut self, sources: &[usize]) {
+        let t = self.table(sources);
+        self.pinned = Some((sources.to_vec(), t));
     }
 
     /// `(n · s)` row-major distances from the `s` sources (a vertex's distances contiguous);
     /// missing sources are searched on all cores.
-    fn table(&mut self, sources: &[usize]) -> Vec<f64> {
-        let mut missing: Vec<usize> = sources.iter().copied().filter(|a| !self.columns.contains_key(a)).collect();
+    fn table(&self, sources: &[usize]) -> Arc<Vec<f64>> {
+        if let Some((list, t)) = &self.pinned {
+            if list.as_slice() == sources {
+                return t.clone();
+            }
+        }
+        let mut missing: Vec<usize> = {
+            let columns = self.columns.lock().unwrap_or_else(|e| e.into_inner());
+            sources.iter().copied().filter(|a| !columns.contains_key(a)).collect()
+        };
         missing.sort_unstable();
         missing.dedup();
         let graph = &self.graph;
         let fresh = crate::parallel::map(&missing, |&a| graph.distances(a));
-        for (a, col) in missing.into_iter().zip(fresh) {
-            self.columns.insert(a, std::sync::Arc::new(col));
-        }
+        let columns: Vec<Arc<Vec<f64>>> = {
+            let mut cache = self.columns.lock().unwrap_or_else(|e| e.into_inner());
+            for (a, col) in missing.into_iter().zip(fresh) {
+                cache.entry(a).or_insert_with(|| Arc::new(col));
+            }
+            sources.iter().map(|a| cache[a].clone()).collect()
+        };
         let n = self.graph.off.len() - 1;
         let s = sources.len();
         let mut t = vec![0.0; n * s];
-        for (j, a) in sources.iter().enumerate() {
-            for (v, &d) in self.columns[a].iter().enumerate() {
+        for (j, col) in columns.iter().enumerate() {
+            for (v, &d) in col.iter().enumerate() {
                 t[v * s + j] = d;
             }
         }
-        t
+        Arc::new(t)
     }
 }
 
-/// Mean `|g(v, a_j) − g(w, b_j)|` over a profile of `(j, g(v, a_j))`, `dst` row-major `(n · s)`.
-fn cost(profile: &[(usize, f64)], dst: &[f64], s: usize, w: usize) -> f64 {
-    let row = &dst[w * s..(w + 1) * s];
-    profile.iter().map(|&(j, d)| (d - row[j]).abs()).sum::<f64>() / profile.len() as f64
+/// The anchor pairs of a polish: `s` pairs `(a_i, b_i)` with row-major `(n · s)` distance
+/// tables from the `a_i` and from the `b_i`; when `doubled`, pair `s + i` is the reversed pair
+/// `(b_i, a_i)` (an involution's), read from the same tables.
+struct Pairs<'t> {
+    ga: &'t [f64],
+    gb: &'t [f64],
+    src: &'t [usize],
+    dst: &'t [usize],
+    s: usize,
+    doubled: bool,
+}
+
+impl Pairs<'_> {
+    /// Source and target vertex of pair `j`.
+    fn pair(&self, j: usize) -> (usize, usize) {
+        if j < self.s {
+            (self.src[j], self.dst[j])
+        } else {
+            (self.dst[j - self.s], self.src[j - self.s])
+        }
+    }
+
+    /// `g(v, source of pair j)`.
+    fn from_source(&self, v: usize, j: usize) -> f64 {
+        if j < self.s {
+            self.ga[v * self.s + j]
+        } else {
+            self.gb[v * self.s + j - self.s]
+        }
+    }
+
+    /// `g(w, target of pair j)`.
+    fn from_target(&self, w: usize, j: usize) -> f64 {
+        if j < self.s {
+            self.gb[w * self.s + j]
+        } else {
+            self.ga[w * self.s + j - self.s]
+        }
+    }
+
+    /// The pairs `anchors` (indices below `s`) and, when doubled, their reversed pairs.
+    fn all(&self, anchors: &[usize]) -> Vec<usize> {
+        let reversed = anchors.iter().map(|&i| i + self.s).filter(|_| self.doubled);
+        anchors.iter().copied().chain(reversed).collect()
+    }
+
+    /// Mean `|g(v, a_j) − g(w, b_j)|` over a profile of `(j, g(v, a_j))`.
+    fn cost(&self, profile: &[(usize, f64)], w: usize) -> f64 {
+        profile.iter().map(|&(j, d)| (d - self.from_target(w, j)).abs()).sum::<f64>() / profile.len() as f64
+    }
 }
 
 /// The geodesic polish of a map (see the module docs); `samples` are the anchor candidates.
 /// Returns the map unchanged when fewer than 3 sample pairs are consistent.
-pub fn polish(ctx: &Context<'_>, geodesics: &mut Geodesics, m: &DenseMap, samples: &[usize], params: &MapParams) -> DenseMap {
+pub fn polish(ctx: &Context<'_>, geodesics: &Geodesics, m: &DenseMap, samples: &[usize], params: &MapParams) -> DenseMap {
     let n = ctx.mesh.num_vertices();
     let k = params.local_anchors;
     let src: Vec<usize> = samples.iter().copied().filter(|&s| m.map[s] >= 0).collect();
@@ -181,10 +249,10 @@ pub fn polish(ctx: &Context<'_>, geodesics: &mut Geodesics, m: &DenseMap, sample
         is_trusted[i] = true;
     }
     let mut anchors: Vec<usize> = trusted.clone();
+    let first = Pairs { ga: &ga, gb: &gb0, src: &src, dst: &dst0, s, doubled: false };
     for i in (0..s).filter(|&i| !is_trusted[i]) {
-        let row = &ga[src[i] * s..(src[i] + 1) * s];
-        super::nearest_profile(|j| row[j], trusted.iter().copied(), k, &mut profile);
-        let c = |w: usize| cost(&profile, &gb0, s, w);
+        super::nearest_profile(|j| first.from_source(src[i], j), trusted.iter().copied(), k, &mut profile);
+        let c = |w: usize| first.cost(&profile, w);
         let w = super::multi_start(ctx, c);
         let (w, cw) = super::descend_by(ctx, w, c);
         if cw <= tol {
@@ -202,23 +270,8 @@ pub fn polish(ctx: &Context<'_>, geodesics: &mut Geodesics, m: &DenseMap, sample
         let back = anchors.iter().filter(|&&i| ga[m.image[dst[i]] * s + i] <= tol).count();
         2 * back >= anchors.len()
     };
-    let (ga, gb, s, src, dst, anchors) = if involution {
-        let s2 = 2 * s;
-        let mut ga2 = vec![0.0; n * s2];
-        let mut gb2 = vec![0.0; n * s2];
-        for v in 0..n {
-            ga2[v * s2..v * s2 + s].copy_from_slice(&ga[v * s..(v + 1) * s]);
-            ga2[v * s2 + s..(v + 1) * s2].copy_from_slice(&gb[v * s..(v + 1) * s]);
-            gb2[v * s2..v * s2 + s].copy_from_slice(&gb[v * s..(v + 1) * s]);
-            gb2[v * s2 + s..(v + 1) * s2].copy_from_slice(&ga[v * s..(v + 1) * s]);
-        }
-        let src2: Vec<usize> = src.iter().chain(&dst).copied().collect();
-        let dst2: Vec<usize> = dst.iter().chain(&src).copied().collect();
-        let anchors2: Vec<usize> = anchors.iter().copied().chain(anchors.iter().map(|&i| i + s)).collect();
-        (ga2, gb2, s2, src2, dst2, anchors2)
-    } else {
-        (ga, gb, s, src, dst, anchors)
-    };
+    let pairs = Pairs { ga: &ga, gb: &gb, src: &src, dst: &dst, s, doubled: involution };
+    let anchors = pairs.all(&anchors);
 
     // 2. Dense map, breadth-first from the anchors so neighbours' images are good starts.
     let mut image = m.image.clone();
@@ -226,26 +279,27 @@ pub fn polish(ctx: &Context<'_>, geodesics: &mut Geodesics, m: &DenseMap, sample
     let mut done = vec![false; n];
     let mut queue = std::collections::VecDeque::new();
     let mut seen = vec![false; n];
-    for &i in &anchors {
-        if !seen[src[i]] {
-            seen[src[i]] = true;
-            queue.push_back(src[i]);
+    for &j in &anchors {
+        let a = pairs.pair(j).0;
+        if !seen[a] {
+            seen[a] = true;
+            queue.push_back(a);
         }
     }
     // Leave one out: an anchor is not evidence for its own image, so an anchor that is off
     // moves with its neighbours' evidence (and the next pass takes the moved image).
-    let profile_of = |v: usize, row: &[f64], profile: &mut Vec<(usize, f64)>| {
-        super::nearest_profile(|j| row[j], anchors.iter().copied().filter(|&j| src[j] != v), k, profile);
+    let profile_of = |v: usize, profile: &mut Vec<(usize, f64)>| {
+        super::nearest_profile(|j| pairs.from_source(v, j), anchors.iter().copied().filter(|&j| pairs.pair(j).0 != v), k, profile);
     };
     while let Some(v) = queue.pop_front() {
-        let row = &ga[v * s..(v + 1) * s];
-        profile_of(v, row, &mut profile);
-        let c = |w: usize| cost(&profile, &gb, s, w);
+        profile_of(v, &mut profile);
+        let c = |w: usize| pairs.cost(&profile, w);
         let near = profile.iter().fold(profile[0], |b, &p| if p.1 < b.1 { p } else { b }).0;
         let mut start = (image[v], c(image[v]));
-        let cn = c(dst[near]);
+        let near_image = pairs.pair(near).1;
+        let cn = c(near_image);
         if cn < start.1 {
-            start = (dst[near], cn);
+            start = (near_image, cn);
         }
         for &u in ctx.neighbours(v) {
             if done[u as usize] {
@@ -282,8 +336,8 @@ pub fn polish(ctx: &Context<'_>, geodesics: &mut Geodesics, m: &DenseMap, sample
         let kf = params.zoomout_k.min(basis.k());
         super::zoomout(basis, &ctx.adjacency, &mut image, kf, kf, params.zoomout_step);
         for v in (0..n).filter(|&v| done[v]) {
-            profile_of(v, &ga[v * s..(v + 1) * s], &mut profile);
-            mismatch[v] = cost(&profile, &gb, s, image[v]);
+            profile_of(v, &mut profile);
+            mismatch[v] = pairs.cost(&profile, image[v]);
         }
         inside = inside_of(&image, &mismatch);
     }
