@@ -43,6 +43,10 @@ fn main() {
     if let Some(t) = std::env::var("TOL").ok().and_then(|b| b.parse().ok()) {
         params.tol = t;
     }
+    // SINGLE=1: the whole eigensolve on one thread (EigenParams::parallel off).
+    if std::env::var("SINGLE").is_ok_and(|v| v == "1") {
+        params.parallel = false;
+    }
     let t = std::time::Instant::now();
     let basis = Eigenbasis::compute(&mesh, &params).expect("eigensolve");
     let total = t.elapsed().as_secs_f64();

@@ -16,7 +16,10 @@
 //!   while it removes a large part of a column (the Daniel–Gragg–Kaufman–Stewart criterion;
 //!   "twice is enough", Giraud et al. 2005), so the basis stays M-orthonormal to machine
 //!   precision and the projected matrix `H = Vᵀ M Op V` is computed, not assumed; each new block
-//!   is orthonormalised by Cholesky QR twice (MGS with random replacement on breakdown);
+//!   is orthonormalised by Cholesky QR twice (MGS with random replacement on breakdown); the
+//!   passes over the tall basis are memory-bound, so on two cores each runs as two
+//!   independent halves (coefficients by columns, updates by rows), bit-identical to one
+//!   thread ([`EigenParams::parallel`]);
 //! - **explicit deflation** of the constant mode `u₀ = 1/√area` (λ₀ = 0), projected out of every
 //!   vector, so no Krylov dimension is spent on it and λ₀ is exactly 0;
 //! - **thick restarts** (Wu & Simon 2000; Stewart's Krylov–Schur): when the basis is full, the
@@ -308,13 +311,16 @@ pub fn eigen(
             {
                 // Two halves of the rows on two threads when allowed (each row as on one).
                 let (vq, sq) = (V.as_ref().subcols(0, m), S.as_ref().subcols(0, nev));
-                let h = if scratch.parallel { n / 2 } else { n };
-                let (top, bottom) = Y.as_mut().subcols_mut(1, nev).split_at_row_mut(h);
-                let (vt, vb) = vq.split_at_row(h);
-                crate::parallel::join(
-                    || matmul(bottom, Accum::Replace, vb, sq, 1.0, Par::Seq),
-                    || matmul(top, Accum::Replace, vt, sq, 1.0, Par::Seq),
-                );
+                if scratch.parallel {
+                    let (top, bottom) = Y.as_mut().subcols_mut(1, nev).split_at_row_mut(n / 2);
+                    let (vt, vb) = vq.split_at_row(n / 2);
+                    crate::parallel::join(
+                        || matmul(bottom, Accum::Replace, vb, sq, 1.0, Par::Seq),
+                        || matmul(top, Accum::Replace, vt, sq, 1.0, Par::Seq),
+                    );
+                } else {
+                    matmul(Y.as_mut().subcols_mut(1, nev), Accum::Replace, vq, sq, 1.0, Par::Seq);
+                }
             }
             let mut evals: Vec<f64> = std::iter::once(0.0).chain(theta[..nev].iter().map(|t| 1.0 / t - sigma)).collect();
             for j in 1..k {
@@ -603,9 +609,11 @@ fn rotate_in_place(v: &mut Mat<f64>, m: usize, s: MatRef<'_, f64>, parallel: boo
             r0 += h;
         }
     }
-    let n = v.nrows();
+    if !parallel {
+        return bands(v.as_mut(), m, s);
+    }
     // Split on a band boundary, so that every band is the one a single thread computes.
-    let h = if parallel { (n / 2).div_ceil(256) * 256 } else { n }.min(n);
+    let h = ((v.nrows() / 2).div_ceil(256) * 256).min(v.nrows());
     let (top, bottom) = v.as_mut().split_at_row_mut(h);
     crate::parallel::join(|| bands(bottom, m, s), || bands(top, m, s));
 }
