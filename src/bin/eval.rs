@@ -49,6 +49,7 @@ fn set_param(p: &mut Params, kv: &str) -> Result<(), String> {
         "patience" => p.patience = u()?,
         "accept" => p.maps.accept = f()?,
         "zoomout_k" => p.maps.zoomout_k = u()?,
+        "zoomout_step" => p.maps.zoomout_step = u()?,
         "spectral_start" => p.maps.spectral_start = u()?,
         "polish" => p.maps.polish = u()?,
         "polish_samples" => p.maps.polish_samples = u()?,
