@@ -36,7 +36,7 @@ use crate::distance::BiharmonicEmbedding;
 use crate::mesh::Mesh;
 use crate::spectral::Eigenbasis;
 
-/// Parameters of [`extract`].
+/// Parameters of the dense maps ([`profile_map`], [`refine`], [`geodesic::polish`]).
 #[derive(Clone, Debug)]
 #[non_exhaustive]
 pub struct MapParams {

@@ -1,7 +1,7 @@
 //! ZoomOut refinement (Melzi, Ren, Rodolà, Sharma, Wonka & Ovsjanikov 2019) of a self-map.
 //!
 //! Alternates between the functional map of the pull-back in the first `k` eigenfunctions,
-//! $$C_k = \Phi_k^\top M\, \Phi_k[T] \quad(\Phi_k(Tv) \approx \Phi_k(v)\, C_k),$$
+//! $$C_k = \Phi_k^\top M\, \Phi_k \circ T \quad(\Phi_k(Tv) \approx \Phi_k(v)\, C_k),$$
 //! and the point map it induces, `T(v) = argmin_w ‖Φ_k(w) − Φ_k(v) C_k‖`, while `k` grows from
 //! `k0` to `k1`. Spectral upsampling turns an approximately right map into a smooth,
 //! vertex-accurate one. The nearest neighbour is found by greedy descent on the mesh graph from
