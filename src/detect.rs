@@ -7,8 +7,8 @@
 //! identity, which always fits the descriptors, is rejected), preserves distances (distortion ≤
 //! `max_distortion`), and is not the same map as a stronger one (agreement on ≥ 80% of the
 //! shared samples; checked again after the geodesic polish, which can bring two versions of
-//! one symmetry together). Finally the set is closed under composition: the composition of two global
-//! symmetries that moves points, preserves distances and is new is reported too.
+//! one symmetry together). Finally the set is closed under composition: the composition of two
+//! global symmetries that moves points, preserves distances and is new is reported too.
 
 use std::time::Instant;
 
@@ -246,6 +246,18 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
         distortion: f64,
         complexity: f64,
     }
+    // Of two versions of one symmetry keep, among global maps, the one with the lower
+    // complexity (the more diagonal functional map: an isometry of a shape with a simple
+    // spectrum maps eigenfunctions to ± themselves; on TOSCA the true mirror scores 0.1–0.3,
+    // competing near-symmetries like a human's front↔back flip ≥ 0.9); otherwise the larger
+    // region, then the lower distortion.
+    let better = |a: &Found, than: &Found| {
+        if a.dense.global && than.dense.global {
+            a.complexity < than.complexity
+        } else {
+            (a.dense.region_size, -a.distortion) > (than.dense.region_size, -than.distortion)
+        }
+    };
     let mut found: Vec<Found> = Vec::new();
     let mut ranked: Vec<&crate::voting::Candidate> = candidates.iter().collect();
     ranked.sort_by(|a, b| (b.pairs.len() * b.support).cmp(&(a.pairs.len() * a.support)));
@@ -339,22 +351,10 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
         if distortion > params.max_distortion {
             continue;
         }
-        // Of two versions of one symmetry keep, among global maps, the one with the lower
-        // complexity (the more diagonal functional map: an isometry of a shape with a simple
-        // spectrum maps eigenfunctions to ± themselves; on TOSCA the true mirror scores 0.1–0.3,
-        // competing near-symmetries like a human's front↔back flip ≥ 0.9); otherwise the larger
-        // region, then the lower distortion.
         let complexity = characterize::complexity(&maps::functional_map(&basis, &dense.map, params.maps.fmap_size), params.complexity_width);
         let candidate = Found { dense, seed, distortion, complexity };
-        let better = |f: &Found| {
-            if f.dense.global && candidate.dense.global {
-                candidate.complexity < f.complexity
-            } else {
-                (candidate.dense.region_size, -candidate.distortion) > (f.dense.region_size, -f.distortion)
-            }
-        };
         match same_as(&candidate.dense, &found, 0.5) {
-            Some(i) if !better(&found[i]) => {}
+            Some(i) if !better(&candidate, &found[i]) => {}
             Some(i) => found[i] = candidate,
             None => {
                 if candidate.dense.refined {
@@ -364,10 +364,10 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
             }
         }
     }
-    // Geodesic polish of every map (see `maps::geodesic`): on posed shapes geodesic distances
-    // are preserved far more precisely than biharmonic ones or low eigenfunctions.
     timings.maps_refine = t_stage.elapsed().as_secs_f64();
     let t_stage = Instant::now();
+    // Geodesic polish of every map (see `maps::geodesic`): on posed shapes geodesic distances
+    // are preserved far more precisely than biharmonic ones or low eigenfunctions.
     if params.maps.polish > 0 {
         let mut geodesics = maps::geodesic::Geodesics::new(&ctx);
         // Farthest-point sampling is incremental: these extend voting's samples.
@@ -406,13 +406,7 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
     for f in found {
         match kept.iter().position(|k| agrees(&k.dense, &f.dense, 0.8)) {
             Some(i) => {
-                let k = &kept[i];
-                let better = if k.dense.global && f.dense.global {
-                    f.complexity < k.complexity
-                } else {
-                    (f.dense.region_size, -f.distortion) > (k.dense.region_size, -k.distortion)
-                };
-                if better {
+                if better(&f, &kept[i]) {
                     kept[i] = f;
                 }
             }

@@ -38,9 +38,9 @@
 //! region on geodesics 87.3%; with reversed anchors 88.8 / 97.0%; leaving the anchor out 89.0 /
 //! 97.5%; with the smoothing step 90.6 / 97.5% (victoria1 79.5 → 87.0%, david1 81.1 → 85.0%;
 //! generated posed quadruped 94.4 → 95.8%). Smoothing at k = 60 or 80 instead of 100: within
-//! 0.1 points. Tried and dropped: Dijkstra on the edge graph plus the unfolded diagonal across every
-//! edge (a less biased geodesic) lost 0.8 points on average; adding 4 or 8 far anchors to each
-//! profile (against a twist of a limb about its axis) changed nothing.
+//! 0.1 points. Tried and dropped: Dijkstra on the edge graph plus the unfolded diagonal across
+//! every edge (a less biased geodesic) lost 0.8 points on average; adding 4 or 8 far anchors to
+//! each profile (against a twist of a limb about its axis) changed nothing.
 //!
 //! Geodesics are Dijkstra distances on the edge graph (a slight overestimate of the surface
 //! distance that largely cancels in the differences), one search per anchor, on all cores.
