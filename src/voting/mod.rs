@@ -157,13 +157,12 @@ pub fn vote(
     let mut order: Vec<usize> = (0..good_pairs).collect();
     order.sort_by(|&a, &b| votes[b].cmp(&votes[a]).then(wd[(pairs[a].0, pairs[a].1)].total_cmp(&wd[(pairs[b].0, pairs[b].1)])));
 
-    let mut grown: Vec<Candidate> = Vec::new();
+    // Each seed grows independently: seeds are grown on all cores, collected in seed order.
     let max_seeds = 2 * ns;
-    for &pi in order.iter().take(max_seeds) {
+    let seeds: Vec<usize> = order.iter().copied().take(max_seeds).take_while(|&pi| votes[pi] > 0).collect();
+    let grow_seed = |&pi: &usize| -> Vec<Candidate> {
+        let mut grown = Vec::new();
         let p = pairs[pi];
-        if votes[pi] == 0 {
-            break;
-        }
         // Second pairs: consistent with p, far from it (orientation), best voted, distinct targets.
         let mut seconds: Vec<usize> = (0..good_pairs)
             .filter(|&qi| {
@@ -202,7 +201,9 @@ pub fn vote(
                 }
             }
         }
-    }
+        grown
+    };
+    let grown: Vec<Candidate> = crate::parallel::map(&seeds, grow_seed).into_iter().flatten().collect();
     let grown_count = grown.len();
     let merged = merge(grown, Some(&dist), eps);
     (merged, VotingInfo { good_pairs, eps, diameter, grown: grown_count }, dist)
