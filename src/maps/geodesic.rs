@@ -291,8 +291,13 @@ pub fn polish(ctx: &Context<'_>, geodesics: &Geodesics, m: &DenseMap, samples: &
     let profile_of = |v: usize, profile: &mut Vec<(usize, f64)>| {
         super::nearest_profile(|j| pairs.from_source(v, j), anchors.iter().copied().filter(|&j| pairs.pair(j).0 != v), k, profile);
     };
+    // Each vertex's profile, kept for judging the smoothed map below (the anchors do not change).
+    let mut profiles: Vec<(usize, f64)> = vec![(0, 0.0); n * k];
+    let mut profile_len = vec![0usize; n];
     while let Some(v) = queue.pop_front() {
         profile_of(v, &mut profile);
+        profiles[v * k..v * k + profile.len()].copy_from_slice(&profile);
+        profile_len[v] = profile.len();
         let c = |w: usize| pairs.cost(&profile, w);
         let near = profile.iter().fold(profile[0], |b, &p| if p.1 < b.1 { p } else { b }).0;
         let mut start = (image[v], c(image[v]));
@@ -336,8 +341,7 @@ pub fn polish(ctx: &Context<'_>, geodesics: &Geodesics, m: &DenseMap, samples: &
         let kf = params.zoomout_k.min(basis.k());
         super::zoomout(basis, &ctx.adjacency, &mut image, kf, kf, params.zoomout_step);
         for v in (0..n).filter(|&v| done[v]) {
-            profile_of(v, &mut profile);
-            mismatch[v] = pairs.cost(&profile, image[v]);
+            mismatch[v] = pairs.cost(&profiles[v * k..v * k + profile_len[v]], image[v]);
         }
         inside = inside_of(&image, &mismatch);
     }
