@@ -3,7 +3,7 @@
 //! ordered leg → leg map.
 //!
 //! `cargo run --release --example quadruped_report [NOISE] [rest]` with `LEVEL` (icosphere level,
-//! default 5), `SEED` (noise seed), and overrides `EPS`, `ACCEPT`, `DIST`, `MAXC`, `MAXR`.
+//! default 5), `SEED` (noise seed), and overrides `EPS`, `ACCEPT`, `DIST`, `MAXC`, `MAXR`, `PROXY` (proxy vertices).
 use intrinsym::shapes::{self, Pose};
 use intrinsym::{detect, eval, Params};
 fn main() {
@@ -19,9 +19,10 @@ fn main() {
     if let Ok(v) = std::env::var("DIST") { p.max_distortion = v.parse().unwrap(); }
     if let Ok(v) = std::env::var("MAXC") { p.max_candidates = v.parse().unwrap(); }
     if let Ok(v) = std::env::var("MAXR") { p.max_refinements = v.parse().unwrap(); }
+    if let Ok(v) = std::env::var("PROXY") { p.maps.proxy_vertices = v.parse().unwrap(); }
     let d = detect(&c.mesh, &p, &mut |_| true).unwrap();
     let t = &d.timings;
-    println!("n={} candidates={} found={} total {:.2}s (spectral {:.2} wks {:.2} dist {:.2} sampling {:.2} voting {:.2} maps {:.2} [profile {:.2} refine {:.2} polish {:.2} compose {:.2}] char {:.2})", c.mesh.num_vertices(), d.candidates, d.symmetries.len(), t.total, t.spectral, t.descriptors, t.distance, t.sampling, t.voting, t.maps, t.maps_profile, t.maps_refine, t.maps_polish, t.maps_compose, t.characterize);
+    println!("n={} candidates={} found={} total {:.2}s (spectral {:.2} wks {:.2} dist {:.2} sampling {:.2} voting {:.2} maps {:.2} [profile {:.2} refine {:.2} polish {:.2} compose {:.2} proxy {:.2} lift {:.2}] char {:.2})", c.mesh.num_vertices(), d.candidates, d.symmetries.len(), t.total, t.spectral, t.descriptors, t.distance, t.sampling, t.voting, t.maps, t.maps_profile, t.maps_refine, t.maps_polish, t.maps_compose, t.maps_proxy, t.maps_lift, t.characterize);
     let truth: Vec<(usize, Vec<usize>)> = (0..c.mesh.num_vertices()).map(|v| (v, vec![c.mirror[v] as usize])).collect();
     let mut leg_ok = vec![vec![0.0f64; 4]; 4];
     for i in 0..4 { for j in 0..4 { if i != j {

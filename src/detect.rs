@@ -19,7 +19,7 @@ use crate::cluster;
 use crate::descriptors::{wks, WksParams};
 use crate::distance::biharmonic;
 use crate::error::Error;
-use crate::maps::{self, Context, MapParams};
+use crate::maps::{self, proxy::Proxy, Context, MapParams};
 use crate::mesh::Mesh;
 use crate::sampling::farthest_point;
 use crate::spectral::{Eigenbasis, EigenParams};
@@ -163,6 +163,10 @@ pub struct Timings {
     pub maps_polish: f64,
     /// Of which: group completion by composition.
     pub maps_compose: f64,
+    /// Of which: building the proxy of a large mesh (0 without one).
+    pub maps_proxy: f64,
+    /// Of which: lifting the proxy's maps to every vertex (0 without a proxy).
+    pub maps_lift: f64,
     /// Complexity, order, distortion.
     pub characterize: f64,
     /// Grouping.
@@ -236,9 +240,34 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
     }
 
     let t = Instant::now();
-    let mut ctx = Context::new(mesh, &emb, &desc, vinfo.diameter, &params.maps);
-    ctx.basis = Some(&basis);
-    let probes = &samples.vertices;
+    // Anchor candidates of the polish: farthest-point sampling is incremental, so these
+    // extend voting's samples.
+    let polish_anchors = farthest_point(&emb, params.maps.polish_samples.max(params.samples), params.seed).vertices;
+    // On a large mesh the maps are made on a proxy of `proxy_vertices` vertices and lifted
+    // (see `maps::proxy`); its first vertices are the samples and the polish's anchors.
+    let proxy = maps::proxy::wanted(n, &params.maps).then(|| {
+        let mut first = samples.vertices.clone();
+        first.extend(polish_anchors.iter().copied().filter(|a| !samples.vertices.contains(a)));
+        Proxy::new(mesh, &basis, &emb, &desc, &first, params.maps.proxy_vertices)
+    });
+    timings.maps_proxy = t.elapsed().as_secs_f64();
+    // The maps stage works in the vertex indices of its domain: the proxy's, or the mesh's.
+    let (probes, polish_anchors) = match &proxy {
+        Some(p) => {
+            let index = |v: &usize| p.seeds.iter().position(|s| s == v).expect("samples are seeds");
+            (samples.vertices.iter().map(index).collect::<Vec<usize>>(), polish_anchors.iter().map(index).collect::<Vec<usize>>())
+        }
+        None => (samples.vertices.clone(), polish_anchors),
+    };
+    let probes = &probes[..];
+    let fine_adjacency = proxy.as_ref().map(|_| mesh.adjacency());
+    let found = {
+    let (emb, basis, mut ctx) = match &proxy {
+        Some(p) => (&p.emb, &p.basis, Context::on_graph(&p.positions, p.adjacency.clone(), &p.emb, &p.wks, vinfo.diameter, &params.maps)),
+        None => (&emb, &basis, Context::new(mesh, &emb, &desc, vinfo.diameter, &params.maps)),
+    };
+    ctx.basis = Some(basis);
+    let n = ctx.num_vertices();
     let agree_tol = params.maps.accept * 2.0 * vinfo.diameter;
     struct Found {
         dense: maps::DenseMap,
@@ -371,12 +400,12 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
     if params.maps.polish > 0 {
         let mut geodesics = maps::geodesic::Geodesics::new(&ctx);
         // Farthest-point sampling is incremental: these extend voting's samples.
-        let anchors = farthest_point(&emb, params.maps.polish_samples.max(params.samples), params.seed).vertices;
+        let anchors = &polish_anchors;
         if !progress(0.95) {
             return Err(cancelled());
         }
         // The samples are the sources of every global map: their table is built once.
-        geodesics.pin(&anchors);
+        geodesics.pin(anchors);
         let geodesics = &geodesics;
         // Maps are polished independently, as many at a time as there are cores (the result
         // does not depend on it), with a cancellation check between rounds.
@@ -388,7 +417,7 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
             let polished = crate::parallel::map(round, |f: &Found| {
                 let mut dense = f.dense.clone();
                 for _ in 0..params.maps.polish {
-                    dense = maps::geodesic::polish(&ctx, geodesics, &dense, &anchors, &params.maps);
+                    dense = maps::geodesic::polish(&ctx, geodesics, &dense, anchors, &params.maps);
                 }
                 dense
             });
@@ -444,16 +473,43 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
                 // factors together is partly wrong (one factor was only partly right).
                 let distortion = characterize::sample_distortion(&dense.map, probes, &emb, vinfo.diameter);
                 let bound = (found[first].distortion + found[second].distortion).min(params.max_distortion);
-                if distortion > bound || same_as(&dense, &found, 0.5).is_some() {
+                if distortion > bound {
+                    continue;
+                }
+                // A known symmetry is not reported twice, but a partial version of it (the
+                // region cut short where the map was hard) gives way to the global composition.
+                let known = same_as(&dense, &found, 0.5);
+                if known.is_some_and(|i| found[i].dense.global) {
                     continue;
                 }
                 let complexity = characterize::complexity(&maps::functional_map(&basis, &dense.map, params.maps.fmap_size), params.complexity_width);
                 let seed = (found[first].seed.0, dense.image[found[first].seed.0]);
-                found.push(Found { dense, seed, distortion, complexity });
+                let composed = Found { dense, seed, distortion, complexity };
+                match known {
+                    Some(i) => found[i] = composed,
+                    None => found.push(composed),
+                }
             }
         }
     }
     timings.maps_compose = t_stage.elapsed().as_secs_f64();
+    found
+    };
+    // Proxy maps lifted to every vertex (concurrently; each is independent), then judged
+    // again on the mesh: distortion on the samples, complexity of the mesh's functional map.
+    let t_stage = Instant::now();
+    let mut found = found;
+    if let (Some(p), Some(adjacency)) = (&proxy, &fine_adjacency) {
+        let lifted = crate::parallel::map(&found, |f| p.lift(&mesh.vertices, adjacency, &f.dense));
+        for (f, dense) in found.iter_mut().zip(lifted) {
+            f.dense = dense;
+            f.seed = (p.seeds[f.seed.0], p.seeds[f.seed.1]);
+            f.distortion = characterize::sample_distortion(&f.dense.map, &samples.vertices, &emb, vinfo.diameter);
+            f.complexity = characterize::complexity(&maps::functional_map(&basis, &f.dense.map, params.maps.fmap_size), params.complexity_width);
+        }
+    }
+    let probes = &samples.vertices;
+    timings.maps_lift = t_stage.elapsed().as_secs_f64();
     timings.maps = t.elapsed().as_secs_f64();
 
     let t = Instant::now();

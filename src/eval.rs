@@ -39,7 +39,7 @@ impl Geodesics {
     /// Prepares the edge graph of `mesh`.
     pub fn new(mesh: &Mesh) -> Self {
         let n = mesh.num_vertices();
-        Geodesics { graph: EdgeGraph::new(mesh, mesh.adjacency()), dist: vec![f64::INFINITY; n], touched: Vec::new(), points: mesh.vertices.clone() }
+        Geodesics { graph: EdgeGraph::new(&mesh.vertices, mesh.adjacency()), dist: vec![f64::INFINITY; n], touched: Vec::new(), points: mesh.vertices.clone() }
     }
 
     /// Distance from `a` to `b`, or `f64::INFINITY` when it exceeds `limit`.

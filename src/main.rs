@@ -58,6 +58,10 @@ enum Command {
         /// Passes of the geodesic polish of every map (0 disables it).
         #[arg(long, default_value_t = 2)]
         polish: usize,
+        /// On meshes of more than twice this many vertices, make the maps on a proxy of this
+        /// many vertices and lift them to every vertex (0: always on the whole mesh).
+        #[arg(long, default_value_t = 6000)]
+        proxy_vertices: usize,
         /// Number of symmetry groups (default: automatic).
         #[arg(long)]
         groups: Option<usize>,
@@ -134,6 +138,7 @@ fn run(cli: Cli) -> Result<(), intrinsym::Error> {
             eps,
             accept,
             polish,
+            proxy_vertices,
             groups,
             allow_non_manifold,
             reject_disconnected,
@@ -153,6 +158,7 @@ fn run(cli: Cli) -> Result<(), intrinsym::Error> {
             params.voting.eps = eps;
             params.maps.accept = accept;
             params.maps.polish = polish;
+            params.maps.proxy_vertices = proxy_vertices;
             params.groups = groups;
             // A progress bar on stderr, hidden when stderr is not a terminal.
             let bar = indicatif::ProgressBar::with_draw_target(Some(1000), indicatif::ProgressDrawTarget::stderr());

@@ -56,6 +56,7 @@ fn set_param(p: &mut Params, kv: &str) -> Result<(), String> {
         "local_anchors" => p.maps.local_anchors = u()?,
         "search_vertices" => p.maps.search_vertices = u()?,
         "global_fraction" => p.maps.global_fraction = f()?,
+        "proxy_vertices" => p.maps.proxy_vertices = u()?,
         _ => return Err(format!("unknown parameter {key}")),
     }
     Ok(())

@@ -50,7 +50,6 @@ use std::collections::{BinaryHeap, HashMap};
 use std::sync::{Arc, Mutex};
 
 use super::{Context, DenseMap, MapParams};
-use crate::mesh::Mesh;
 
 /// Edge graph of a mesh with edge lengths (CSR): the graph of every Dijkstra search here and of
 /// the evaluation's geodesics ([`crate::eval::Geodesics`]).
@@ -61,10 +60,11 @@ pub struct EdgeGraph {
 }
 
 impl EdgeGraph {
-    /// The graph of `mesh` with its CSR `adjacency` ([`Mesh::adjacency`]).
-    pub fn new(mesh: &Mesh, adjacency: (Vec<usize>, Vec<u32>)) -> Self {
+    /// The graph of vertices at `positions` with CSR `adjacency` ([`crate::Mesh::adjacency`]);
+    /// an edge is as long as the straight line between its ends.
+    pub fn new(positions: &[[f64; 3]], adjacency: (Vec<usize>, Vec<u32>)) -> Self {
         let (off, nbr) = adjacency;
-        let p = &mesh.vertices;
+        let p = positions;
         let mut len = Vec::with_capacity(nbr.len());
         for v in 0..off.len() - 1 {
             for &u in &nbr[off[v]..off[v + 1]] {
@@ -115,7 +115,7 @@ pub struct Geodesics {
 impl Geodesics {
     /// An empty cache on `ctx`'s mesh.
     pub fn new(ctx: &Context<'_>) -> Self {
-        Geodesics { graph: EdgeGraph::new(ctx.mesh, ctx.adjacency.clone()), columns: Default::default(), pinned: None }
+        Geodesics { graph: EdgeGraph::new(ctx.positions, ctx.adjacency.clone()), columns: Default::default(), pinned: None }
     }
 
     /// Builds the table of `sources` once, for every later table of the same list.
@@ -214,7 +214,7 @@ impl Pairs<'_> {
 /// The geodesic polish of a map (see the module docs); `samples` are the anchor candidates.
 /// Returns the map unchanged when fewer than 3 sample pairs are consistent.
 pub fn polish(ctx: &Context<'_>, geodesics: &Geodesics, m: &DenseMap, samples: &[usize], params: &MapParams) -> DenseMap {
-    let n = ctx.mesh.num_vertices();
+    let n = ctx.num_vertices();
     let k = params.local_anchors;
     let src: Vec<usize> = samples.iter().copied().filter(|&s| m.map[s] >= 0).collect();
     if src.len() < 3 {
@@ -389,7 +389,7 @@ mod tests {
         let emb = biharmonic(&basis);
         let desc = wks(&basis, &WksParams::default());
         let ctx = Context::new(&c.mesh, &emb, &desc, 1.0, &MapParams::default());
-        let g = EdgeGraph::new(ctx.mesh, ctx.adjacency.clone());
+        let g = EdgeGraph::new(ctx.positions, ctx.adjacency.clone());
         let d0 = g.distances(0);
         let p = &c.mesh.vertices;
         for v in 0..c.mesh.num_vertices() {

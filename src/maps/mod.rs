@@ -27,6 +27,7 @@
 use faer::Mat;
 
 pub mod geodesic;
+pub mod proxy;
 pub mod spectral_init;
 pub mod zoomout;
 
@@ -82,11 +83,15 @@ pub struct MapParams {
     /// voting's; a superset of them). On posed TOSCA 64 → 128 gave 85.0 → 86.4% mean acc@0.05;
     /// 192 gave 86.5%.
     pub polish_samples: usize,
+    /// On a mesh of more than twice this many vertices, the maps are made
+    /// on a proxy of this many vertices and lifted to every vertex ([`proxy`]; default 6000,
+    /// 0 disables it).
+    pub proxy_vertices: usize,
 }
 
 impl Default for MapParams {
     fn default() -> Self {
-        MapParams { accept: 0.03, refine: 3, fmap_size: 20, search_vertices: 1000, local_anchors: 16, wks_accept: 0.2, zoomout_fraction: 0.6, zoomout_k: 100, spectral_start: 12, zoomout_step: 5, global_fraction: 0.75, polish: 2, polish_samples: 128 }
+        MapParams { accept: 0.03, refine: 3, fmap_size: 20, search_vertices: 1000, local_anchors: 16, wks_accept: 0.2, zoomout_fraction: 0.6, zoomout_k: 100, spectral_start: 12, zoomout_step: 5, global_fraction: 0.75, polish: 2, polish_samples: 128, proxy_vertices: 6000 }
     }
 }
 
@@ -131,8 +136,8 @@ impl DenseMap {
 
 /// Precomputed geometry shared by every candidate's extraction.
 pub struct Context<'a> {
-    /// The mesh.
-    pub mesh: &'a Mesh,
+    /// Vertex positions (the lengths of the edge graph's edges).
+    pub positions: &'a [[f64; 3]],
     /// Biharmonic embedding.
     pub emb: &'a BiharmonicEmbedding,
     /// CSR adjacency.
@@ -152,11 +157,29 @@ pub struct Context<'a> {
 impl<'a> Context<'a> {
     /// Builds the shared context.
     pub fn new(mesh: &'a Mesh, emb: &'a BiharmonicEmbedding, wks: &Mat<f64>, diameter: f64, params: &MapParams) -> Self {
-        let n = mesh.num_vertices();
+        Self::on_graph(&mesh.vertices, mesh.adjacency(), emb, wks, diameter, params)
+    }
+
+    /// The context of a vertex graph (a mesh's, or a [`proxy::Proxy`]'s): positions, CSR
+    /// adjacency, and the embedding and signatures of its vertices.
+    pub fn on_graph(
+        positions: &'a [[f64; 3]],
+        adjacency: (Vec<usize>, Vec<u32>),
+        emb: &'a BiharmonicEmbedding,
+        wks: &Mat<f64>,
+        diameter: f64,
+        params: &MapParams,
+    ) -> Self {
+        let n = positions.len();
         let stride = (n / params.search_vertices.max(1)).max(1);
         let energies = wks.ncols();
         let rows = row_major(wks.as_ref(), energies);
-        Context { mesh, emb, adjacency: mesh.adjacency(), diameter, search: (0..n).step_by(stride).collect(), wks: rows, energies, basis: None }
+        Context { positions, emb, adjacency, diameter, search: (0..n).step_by(stride).collect(), wks: rows, energies, basis: None }
+    }
+
+    /// Number of vertices.
+    pub fn num_vertices(&self) -> usize {
+        self.positions.len()
     }
 
     /// WKS distance between two vertices.
@@ -303,7 +326,7 @@ pub fn profile_map(
 
 /// Whether a profile map is global enough for [`refine`].
 pub fn refinable(ctx: &Context<'_>, m: &DenseMap, params: &MapParams) -> bool {
-    ctx.basis.is_some() && params.zoomout_k > 0 && m.region_size as f64 >= params.zoomout_fraction * ctx.mesh.num_vertices() as f64
+    ctx.basis.is_some() && params.zoomout_k > 0 && m.region_size as f64 >= params.zoomout_fraction * ctx.num_vertices() as f64
 }
 
 /// ZoomOut refinement of a (nearly) global profile map, then a second pass: the refined map's
@@ -393,7 +416,7 @@ fn profile_images(
     initial_tol: f64,
     params: &MapParams,
 ) -> Option<(Vec<(usize, usize)>, Vec<usize>)> {
-    let n = ctx.mesh.num_vertices();
+    let n = ctx.num_vertices();
     let tol = params.accept * ctx.diameter;
     let mut anchors: Vec<(usize, usize)> = anchors.to_vec();
     // Image of every sample from the previous round (also of those not accepted as anchors):
@@ -483,7 +506,7 @@ fn profile_images(
 /// Mismatch, region and confidence of `image` under `anchors`. A map whose region covers
 /// `global_fraction` of the vertices is global and defined everywhere.
 fn finish(ctx: &Context<'_>, anchors: Vec<(usize, usize)>, image: Vec<usize>, params: &MapParams, refined: bool) -> DenseMap {
-    let n = ctx.mesh.num_vertices();
+    let n = ctx.num_vertices();
     let tol = params.accept * ctx.diameter;
     let src: Vec<usize> = anchors.iter().map(|a| a.0).collect();
     let dst_v: Vec<usize> = anchors.iter().map(|a| a.1).collect();

@@ -2,9 +2,9 @@
 //!
 //! ```text
 //! { "vertices": n, "faces": m,
-//!   "params": { "eigenpairs", "samples", "seed", "wks_quantile", "eps", "accept", "polish", "groups" },
+//!   "params": { "eigenpairs", "samples", "seed", "wks_quantile", "eps", "accept", "polish", "proxy_vertices", "groups" },
 //!   "timings": { "spectral", "descriptors", "distance", "sampling", "voting", "maps",
-//!                "maps_profile", "maps_refine", "maps_polish", "maps_compose",
+//!                "maps_proxy", "maps_profile", "maps_refine", "maps_polish", "maps_compose", "maps_lift",
 //!                "characterize", "cluster", "total" },           // seconds
 //!   "symmetries": [ { "id", "kind": "global"|"partial", "group", "order", "complexity",
 //!                     "distortion", "source", "target", "support_pairs": [[a, b], …],
@@ -56,6 +56,7 @@ pub fn to_json(det: &Detection, params: &Params) -> Value {
             "eps": params.voting.eps,
             "accept": params.maps.accept,
             "polish": params.maps.polish,
+            "proxy_vertices": params.maps.proxy_vertices,
             "groups": params.groups,
         },
         "timings": {
@@ -69,6 +70,8 @@ pub fn to_json(det: &Detection, params: &Params) -> Value {
             "maps_refine": t.maps_refine,
             "maps_polish": t.maps_polish,
             "maps_compose": t.maps_compose,
+            "maps_proxy": t.maps_proxy,
+            "maps_lift": t.maps_lift,
             "characterize": t.characterize,
             "cluster": t.cluster,
             "total": t.total,

@@ -1,0 +1,357 @@
+//! A coarse proxy of a large mesh for the dense-map stage, and the lift of its maps back to
+//! every vertex.
+//!
+//! The dense maps (profile matching, ZoomOut, the geodesic polish) cost O(n) per step with
+//! large constants, and a symmetry map is a smooth, low-dimensional object: a few thousand
+//! well spread vertices determine it. So on a mesh of `n ≫ m` vertices the maps stage runs on
+//! a proxy of `m` vertices (default 6000, [`super::MapParams::proxy_vertices`]):
+//!
+//! 1. **Seeds**: the farthest-point samples already used (voting's and the polish's, so they
+//!    keep their indices `0, 1, …`), extended by farthest-point sampling in the edge-graph
+//!    geodesic distance (incremental Dijkstra, each new seed re-labelling only the vertices it
+//!    is nearer to) up to `m`. Geodesic spacing is even on the surface, whatever the vertex
+//!    density.
+//! 2. **Cells**: every vertex belongs to its nearest seed (the geodesic Voronoi cell, a
+//!    by-product of the sampling). Two seeds are neighbours when an edge of the mesh joins their
+//!    cells: the proxy's graph is the dual of the Voronoi partition, a coarse triangulation.
+//! 3. **Restriction**: the proxy's eigenbasis is the mesh's, sampled at the seeds
+//!    (`Φ_proxy = Φ[seeds]`, same eigenvalues), with the mass of each cell
+//!    (`m_c = Σ_{v∈cell c} m_v`), so `C = (M Φ)ᵀ Φ[T]` is the same integral at a coarser
+//!    quadrature; the biharmonic embedding and the wave kernel signatures are the mesh's rows
+//!    at the seeds. Nothing is recomputed on a coarse mesh: the spectral quantities are exact.
+//! 4. **Lift** ([`Proxy::lift`]): vertex `v` in the cell of seed `c` is placed relative to
+//!    `c`'s proxy image by local trilateration: its image is the vertex `w` minimising
+//!    `Σ_{c'} | |x_v − x_{c'}| − |x_w − x_{T c'}| |` over `c` and its neighbour seeds `c'`
+//!    (greedy descent on the mesh from the image of `c`, or of an already placed neighbour).
+//!    At the scale of a cell (radius ≈ √(area / (π m)), 0.7% of √area at m = 6000) an
+//!    intrinsic isometry preserves straight distances to first order, so this only interpolates
+//!    within the proxy's precision; it does not decide anything the proxy map did not. The
+//!    region, confidence and mismatch of `v` are its cell's.
+
+use faer::Mat;
+use sprs::CsMat;
+use std::cmp::Reverse;
+use std::collections::{BinaryHeap, VecDeque};
+
+use super::geodesic::EdgeGraph;
+use super::DenseMap;
+use crate::distance::BiharmonicEmbedding;
+use crate::mesh::Mesh;
+use crate::spectral::Eigenbasis;
+
+/// A mesh needs a proxy when it has more than this many times `proxy_vertices` vertices.
+pub(crate) const PROXY_MARGIN: f64 = 2.0;
+
+/// Whether the maps of a mesh of `n` vertices are made on a proxy.
+pub fn wanted(n: usize, params: &super::MapParams) -> bool {
+    params.proxy_vertices > 0 && n as f64 > PROXY_MARGIN * params.proxy_vertices as f64
+}
+
+/// The coarse proxy of a mesh (see the module docs). Proxy vertex `c` is mesh vertex
+/// `seeds[c]`.
+pub struct Proxy {
+    /// `(m,)` the mesh vertex of each proxy vertex.
+    pub seeds: Vec<usize>,
+    /// `(n,)` the proxy vertex (cell) of each mesh vertex.
+    pub owner: Vec<u32>,
+    /// `(m,)` positions of the seeds.
+    pub positions: Vec<[f64; 3]>,
+    /// CSR adjacency of the proxy graph (cells sharing a mesh edge).
+    pub adjacency: (Vec<usize>, Vec<u32>),
+    /// The mesh's biharmonic embedding at the seeds.
+    pub emb: BiharmonicEmbedding,
+    /// `(m, E)` the mesh's wave kernel signatures at the seeds.
+    pub wks: Mat<f64>,
+    /// The mesh's eigenbasis at the seeds, with cell masses (no Laplacian: an empty matrix).
+    pub basis: Eigenbasis,
+}
+
+impl Proxy {
+    /// A proxy of `size` vertices whose first seeds are `first` (distinct mesh vertices, in
+    /// order): proxy vertex `i < first.len()` is `first[i]`.
+    pub fn new(mesh: &Mesh, basis: &Eigenbasis, emb: &BiharmonicEmbedding, wks: &Mat<f64>, first: &[usize], size: usize) -> Proxy {
+        let n = mesh.num_vertices();
+        let adjacency = mesh.adjacency();
+        let graph = EdgeGraph::new(&mesh.vertices, adjacency.clone());
+        let (seeds, owner) = geodesic_farthest_points(&graph, first, size.clamp(first.len().max(1), n));
+        let m = seeds.len();
+        // Cells sharing a mesh edge are neighbours.
+        let mut rows: Vec<Vec<u32>> = vec![Vec::new(); m];
+        let (off, nbr) = &adjacency;
+        for v in 0..n {
+            for &u in &nbr[off[v]..off[v + 1]] {
+                let (a, b) = (owner[v], owner[u as usize]);
+                if a != b {
+                    rows[a as usize].push(b);
+                }
+            }
+        }
+        let mut coff = Vec::with_capacity(m + 1);
+        let mut cnbr = Vec::new();
+        coff.push(0);
+        for r in &mut rows {
+            r.sort_unstable();
+            r.dedup();
+            cnbr.extend_from_slice(r);
+            coff.push(cnbr.len());
+        }
+        let positions = seeds.iter().map(|&s| mesh.vertices[s]).collect();
+        let sub_emb = BiharmonicEmbedding {
+            coords: Mat::from_fn(m, emb.coords.ncols(), |c, i| emb.coords[(seeds[c], i)]),
+            norms2: seeds.iter().map(|&s| emb.norms2[s]).collect(),
+        };
+        let sub_wks = Mat::from_fn(m, wks.ncols(), |c, e| wks[(seeds[c], e)]);
+        let mut mass = vec![0.0; m];
+        for v in 0..n {
+            mass[owner[v] as usize] += basis.mass[v];
+        }
+        let sub_basis = Eigenbasis {
+            evals: basis.evals.clone(),
+            evecs: Mat::from_fn(m, basis.k(), |c, i| basis.evecs[(seeds[c], i)]),
+            mass,
+            laplacian: CsMat::zero((m, m)),
+            area: basis.area,
+            info: basis.info.clone(),
+            assembly_seconds: 0.0,
+        };
+        Proxy { seeds, owner, positions, adjacency: (coff, cnbr), emb: sub_emb, wks: sub_wks, basis: sub_basis }
+    }
+
+    /// Number of proxy vertices.
+    pub fn len(&self) -> usize {
+        self.seeds.len()
+    }
+
+    /// Whether the proxy has no vertices.
+    pub fn is_empty(&self) -> bool {
+        self.seeds.is_empty()
+    }
+
+    /// The map `m` of the proxy lifted to every mesh vertex (see the module docs):
+    /// `positions` and `adjacency` are the mesh's.
+    pub fn lift(&self, positions: &[[f64; 3]], adjacency: &(Vec<usize>, Vec<u32>), m: &DenseMap) -> DenseMap {
+        let n = self.owner.len();
+        let (coff, cnbr) = &self.adjacency;
+        let d = |a: &[f64; 3], b: &[f64; 3]| ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt();
+        let mut image = vec![usize::MAX; n];
+        let mut done = vec![false; n];
+        // Breadth-first from the seeds (each maps to its proxy image), so that a vertex's
+        // neighbours are placed before it and give it a start.
+        let mut queue: VecDeque<usize> = VecDeque::with_capacity(n);
+        for (c, &s) in self.seeds.iter().enumerate() {
+            image[s] = self.seeds[m.image[c]];
+            done[s] = true;
+            queue.push_back(s);
+        }
+        // (distance from v to seed c', image position of c') for c and its neighbours.
+        let mut frame: Vec<(f64, [f64; 3])> = Vec::new();
+        while let Some(v) = queue.pop_front() {
+            for &u in &adjacency.1[adjacency.0[v]..adjacency.0[v + 1]] {
+                let u = u as usize;
+                if done[u] {
+                    continue;
+                }
+                done[u] = true;
+                let c = self.owner[u] as usize;
+                frame.clear();
+                for &c2 in std::iter::once(&(c as u32)).chain(&cnbr[coff[c]..coff[c + 1]]) {
+                    let c2 = c2 as usize;
+                    frame.push((d(&positions[u], &self.positions[c2]), positions[self.seeds[m.image[c2]]]));
+                }
+                let cost = |w: usize| frame.iter().map(|(dv, t)| (dv - d(&positions[w], t)).abs()).sum::<f64>();
+                let own = self.seeds[m.image[c]];
+                let from_neighbour = image[v];
+                let start = if cost(from_neighbour) < cost(own) { from_neighbour } else { own };
+                image[u] = super::greedy_descent(adjacency, start, cost).0;
+                queue.push_back(u);
+            }
+        }
+        // Vertices of components without a seed (none: every component gets one) keep themselves.
+        for (v, w) in image.iter_mut().enumerate() {
+            if *w == usize::MAX {
+                *w = v;
+            }
+        }
+        let mut map = vec![-1i64; n];
+        let mut confidence = vec![0.0; n];
+        let mut mismatch = vec![0.0; n];
+        let mut region_size = 0;
+        for v in 0..n {
+            let c = self.owner[v] as usize;
+            mismatch[v] = m.mismatch[c];
+            if m.map[c] >= 0 {
+                map[v] = image[v] as i64;
+                confidence[v] = m.confidence[c];
+                region_size += 1;
+            }
+        }
+        DenseMap {
+            map,
+            confidence,
+            mismatch,
+            anchors: m.anchors.iter().map(|&(a, b)| (self.seeds[a], self.seeds[b])).collect(),
+            region_size,
+            global: m.global,
+            refined: m.refined,
+            image,
+        }
+    }
+}
+
+/// Farthest-point sampling in edge-graph distance, starting from the seeds `first`, up to
+/// `size` seeds; returns the seeds and the nearest seed (Voronoi cell) of every vertex. A
+/// component of the graph without a seed is infinitely far, so every component gets one.
+fn geodesic_farthest_points(graph: &EdgeGraph, first: &[usize], size: usize) -> (Vec<usize>, Vec<u32>) {
+    let n = graph.off.len() - 1;
+    let mut dist = vec![f64::INFINITY; n];
+    let mut owner = vec![u32::MAX; n];
+    let mut seeds: Vec<usize> = Vec::with_capacity(size);
+    // Candidates for the farthest vertex, lazily invalidated: an entry is current when its
+    // distance is the vertex's distance now (distances only decrease).
+    let mut far: BinaryHeap<(u64, u32)> = BinaryHeap::new();
+    let mut near: BinaryHeap<Reverse<(u64, u32)>> = BinaryHeap::new();
+    let mut grow = |sources: &[usize], seeds: &mut Vec<usize>, dist: &mut Vec<f64>, owner: &mut Vec<u32>, far: &mut BinaryHeap<(u64, u32)>| {
+        for &s in sources {
+            let c = seeds.len() as u32;
+            seeds.push(s);
+            dist[s] = 0.0;
+            owner[s] = c;
+            near.push(Reverse((0, s as u32)));
+        }
+        while let Some(Reverse((key, v))) = near.pop() {
+            let (dv, v) = (f64::from_bits(key), v as usize);
+            if dv > dist[v] {
+                continue;
+            }
+            far.push((key, v as u32));
+            for e in graph.off[v]..graph.off[v + 1] {
+                let u = graph.nbr[e] as usize;
+                let nd = dv + graph.len[e];
+                if nd < dist[u] {
+                    dist[u] = nd;
+                    owner[u] = owner[v];
+                    near.push(Reverse((nd.to_bits(), u as u32)));
+                }
+            }
+        }
+    };
+    grow(first, &mut seeds, &mut dist, &mut owner, &mut far);
+    // Unreached vertices (other components) are candidates at infinite distance.
+    for v in 0..n {
+        if dist[v] == f64::INFINITY {
+            far.push((f64::INFINITY.to_bits(), v as u32));
+        }
+    }
+    while seeds.len() < size {
+        let Some((key, v)) = far.pop() else { break };
+        let v = v as usize;
+        if key != dist[v].to_bits() || dist[v] == 0.0 {
+            continue;
+        }
+        grow(&[v], &mut seeds, &mut dist, &mut owner, &mut far);
+    }
+    // Components still without a seed (only if `size` was too small for them all): their own.
+    for v in 0..n {
+        if owner[v] == u32::MAX {
+            let c = seeds.len() as u32;
+            seeds.push(v);
+            owner[v] = c;
+            let mut queue = VecDeque::from([v]);
+            while let Some(x) = queue.pop_front() {
+                for &u in &graph.nbr[graph.off[x]..graph.off[x + 1]] {
+                    if owner[u as usize] == u32::MAX {
+                        owner[u as usize] = c;
+                        queue.push_back(u as usize);
+                    }
+                }
+            }
+        }
+    }
+    (seeds, owner)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::descriptors::{wks, WksParams};
+    use crate::distance::biharmonic;
+    use crate::shapes::{self, Pose};
+    use crate::spectral::EigenParams;
+
+    /// The proxy keeps the given seeds first, covers the mesh with connected cells of even
+    /// size, and conserves the area.
+    #[test]
+    fn cells_partition_the_mesh() {
+        let c = shapes::quadruped(4, Pose::Walking, 0.0, 0);
+        let n = c.mesh.num_vertices();
+        let basis = Eigenbasis::compute(&c.mesh, &EigenParams { k: 20, ..Default::default() }).unwrap();
+        let emb = biharmonic(&basis);
+        let desc = wks(&basis, &WksParams::default());
+        let first = [7usize, 100, 2000];
+        let p = Proxy::new(&c.mesh, &basis, &emb, &desc, &first, 500);
+        assert_eq!(p.len(), 500);
+        assert_eq!(&p.seeds[..3], &first);
+        let mut sizes = vec![0usize; p.len()];
+        for v in 0..n {
+            sizes[p.owner[v] as usize] += 1;
+        }
+        for (c2, &s) in p.seeds.iter().enumerate() {
+            assert_eq!(p.owner[s] as usize, c2, "a seed is in its own cell");
+        }
+        // Farthest-point cells are even: none more than 4× the mean (n / 500 ≈ 5).
+        assert!(sizes.iter().all(|&s| s >= 1 && s <= 4 * n / 500), "cell sizes {:?}", sizes.iter().max());
+        let area: f64 = p.basis.mass.iter().sum();
+        assert!((area - basis.area).abs() < 1e-9 * basis.area);
+        // The proxy graph is connected (the mesh is) and symmetric.
+        let (off, nbr) = &p.adjacency;
+        for a in 0..p.len() {
+            for &b in &nbr[off[a]..off[a + 1]] {
+                assert!(nbr[off[b as usize]..off[b as usize + 1]].contains(&(a as u32)));
+            }
+        }
+        let mut seen = vec![false; p.len()];
+        let mut stack = vec![0usize];
+        seen[0] = true;
+        while let Some(a) = stack.pop() {
+            for &b in &nbr[off[a]..off[a + 1]] {
+                if !std::mem::replace(&mut seen[b as usize], true) {
+                    stack.push(b as usize);
+                }
+            }
+        }
+        assert!(seen.iter().all(|&s| s));
+    }
+
+    /// Lifting the proxy's restriction of the exact mirror gives back the mirror at nearly
+    /// every vertex (trilateration inside the cells), with the cells' region.
+    #[test]
+    fn lift_recovers_the_mirror_between_seeds() {
+        let c = shapes::quadruped(5, Pose::Rest, 0.0, 0);
+        let n = c.mesh.num_vertices();
+        let basis = Eigenbasis::compute(&c.mesh, &EigenParams { k: 20, ..Default::default() }).unwrap();
+        let emb = biharmonic(&basis);
+        let desc = wks(&basis, &WksParams::default());
+        let p = Proxy::new(&c.mesh, &basis, &emb, &desc, &[0], 1500);
+        // The proxy map: each seed to the seed whose cell holds its mirror image.
+        let image: Vec<usize> = p.seeds.iter().map(|&s| p.owner[c.mirror[s] as usize] as usize).collect();
+        let image_of = |v: usize| image[p.owner[v] as usize];
+        let mut coarse = DenseMap::from_image(image.clone());
+        // One cell outside the region.
+        coarse.map[5] = -1;
+        let lifted = p.lift(&c.mesh.vertices, &c.mesh.adjacency(), &coarse);
+        // The proxy map is right to a cell; the lift must stay within that and beat the
+        // piecewise-constant lift (every vertex to its cell's image seed).
+        let x = &c.mesh.vertices;
+        let d = |a: usize, b: usize| ((x[a][0] - x[b][0]).powi(2) + (x[a][1] - x[b][1]).powi(2) + (x[a][2] - x[b][2]).powi(2)).sqrt();
+        let radius = (basis.area / (std::f64::consts::PI * p.len() as f64)).sqrt();
+        let err: Vec<f64> = (0..n).map(|v| d(lifted.image[v], c.mirror[v] as usize)).collect();
+        let constant: f64 = (0..n).map(|v| d(p.seeds[image_of(v)], c.mirror[v] as usize)).sum::<f64>() / n as f64;
+        let mean = err.iter().sum::<f64>() / n as f64;
+        let within = err.iter().filter(|&&e| e <= 2.0 * radius).count();
+        assert!(within as f64 >= 0.97 * n as f64, "{within} of {n} within two cell radii");
+        assert!(mean < 0.7 * constant, "mean error {mean:.4} against {constant:.4} piecewise constant (cell radius {radius:.4})");
+        let outside = (0..n).filter(|&v| p.owner[v] == 5).count();
+        assert_eq!(lifted.region_size, n - outside);
+        assert!((0..n).all(|v| (lifted.map[v] < 0) == (p.owner[v] == 5)));
+    }
+}
