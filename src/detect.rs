@@ -353,10 +353,17 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
             dense = match ahead.take() {
                 Some((j, refined)) if j == pi => refined,
                 other => {
-                    ahead = other;
-                    // The next candidate that would be refined if this one adds nothing new.
+                    // A speculation for a later candidate is kept; one for a candidate that
+                    // was skipped meanwhile is dropped (it would block the next speculation).
+                    ahead = other.filter(|&(j, _)| j > pi);
+                    // The next candidate that would be refined if this one adds nothing new;
+                    // failing that, the next one that would be if this one replaces the map
+                    // it now duplicates (a better version: the duplicates change with it).
                     let next = (parallel && ahead.is_none() && refinements < params.max_refinements && fruitless < params.patience)
-                        .then(|| (pi + 1..profiled.len()).find(|&j| maps::refinable(&ctx, &profiled[j].0, &params.maps) && !skip(&profiled[j].0, &found)))
+                        .then(|| {
+                            let later = || (pi + 1..profiled.len()).filter(|&j| maps::refinable(&ctx, &profiled[j].0, &params.maps));
+                            later().find(|&j| !skip(&profiled[j].0, &found)).or_else(|| later().next())
+                        })
                         .flatten();
                     match next {
                         Some(j) => {

@@ -11,7 +11,7 @@
 //! (the functional map is a low-dimensional object); the last iteration maps every vertex,
 //! breadth-first from the subset so each vertex starts from its neighbours' images.
 
-use faer::{Accum, Mat, Par};
+use faer::{Accum, Mat, MatRef, Par};
 
 use crate::spectral::Eigenbasis;
 
@@ -42,33 +42,43 @@ pub fn zoomout(basis: &Eigenbasis, adjacency: &(Vec<usize>, Vec<u32>), map: &mut
     }
     let dist = |w: usize, target: &[f64]| -> f64 { super::squared_distance(&rows[w * kmax..w * kmax + target.len()], target) };
     // Targets Φ_k(v) C_k of the vertices `vs`, one gemm: column r of `(C_kᵀ Φ_k(vs)ᵀ)` is the
-    // target of vs[r], contiguous for the descent.
-    let targets = |vs: &[usize], c: &Mat<f64>| -> Mat<f64> {
+    // target of vs[r], contiguous for the descent. Column v of the row-major Φ read as a
+    // `(kmax, n)` column-major matrix is Φ(v): all vertices need no copy.
+    let all_phi = MatRef::from_column_major_slice_with_stride(&rows, kmax, n, kmax);
+    let targets = |vs: Option<&[usize]>, c: &Mat<f64>| -> Mat<f64> {
         let k = c.nrows();
-        let phi = Mat::<f64>::from_fn(k, vs.len(), |p, r| rows[vs[r] * kmax + p]);
-        let mut t = Mat::<f64>::zeros(k, vs.len());
-        faer::linalg::matmul::matmul(t.as_mut(), Accum::Replace, c.transpose(), phi.as_ref(), 1.0, Par::Seq);
+        let gathered;
+        let phi = match vs {
+            Some(vs) => {
+                gathered = Mat::<f64>::from_fn(k, vs.len(), |p, r| rows[vs[r] * kmax + p]);
+                gathered.as_ref()
+            }
+            None => all_phi.subrows(0, k),
+        };
+        let mut t = Mat::<f64>::zeros(k, phi.ncols());
+        faer::linalg::matmul::matmul(t.as_mut(), Accum::Replace, c.transpose(), phi, 1.0, Par::Seq);
         t
     };
+    let whole = sub.len() == n;
+    let mut gather = vec![0.0; sub.len() * kmax];
     loop {
-        // C_k = (M Φ_k)ᵀ Φ_k[T] over the subset.
-        let mut phit = Mat::<f64>::zeros(sub.len(), k);
-        for i in 0..k {
-            for (r, x) in phit.col_as_slice_mut(i).iter_mut().enumerate() {
-                *x = rows[map[sub[r]] * kmax + i];
-            }
+        // C_k = (M Φ_k)ᵀ Φ_k[T] over the subset; Φ_k[T] gathered a row (one vertex's
+        // coefficients, contiguous) at a time.
+        for (r, &v) in sub.iter().enumerate() {
+            let w = map[v];
+            gather[r * k..(r + 1) * k].copy_from_slice(&rows[w * kmax..w * kmax + k]);
         }
+        let phit = MatRef::from_row_major_slice(&gather[..sub.len() * k], sub.len(), k);
         let mut c = Mat::<f64>::zeros(k, k);
-        faer::linalg::matmul::matmul(c.as_mut(), Accum::Replace, mphi.as_ref().subcols(0, k).transpose(), phit.as_ref(), 1.0, Par::Seq);
-        let t = targets(&sub, &c);
+        faer::linalg::matmul::matmul(c.as_mut(), Accum::Replace, mphi.as_ref().subcols(0, k).transpose(), phit, 1.0, Par::Seq);
+        let t = targets((!whole).then_some(&sub[..]), &c);
         for (r, &v) in sub.iter().enumerate() {
             let target = t.col_as_slice(r);
             map[v] = super::greedy_descent(adjacency, map[v], |u| dist(u, target)).0;
         }
         if k >= kmax && sub.len() < n {
             // Last iteration on a large mesh: every other vertex, breadth-first from the subset.
-            let all: Vec<usize> = (0..n).collect();
-            let t = targets(&all, &c);
+            let t = targets(None, &c);
             let mut done = vec![false; n];
             let mut queue = std::collections::VecDeque::new();
             for &v in &sub {
