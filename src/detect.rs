@@ -243,6 +243,7 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
     // Anchor candidates of the polish: farthest-point sampling is incremental, so these
     // extend voting's samples.
     let polish_anchors = farthest_point(&emb, params.maps.polish_samples.max(params.samples), params.seed).vertices;
+    let polish_sampling = t.elapsed().as_secs_f64();
     // On a large mesh the maps are made on a proxy of `proxy_vertices` vertices and lifted
     // (see `maps::proxy`); its first vertices are the samples and the polish's anchors.
     let proxy = maps::proxy::wanted(n, &params.maps).then(|| {
@@ -250,7 +251,7 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
         first.extend(polish_anchors.iter().copied().filter(|a| !samples.vertices.contains(a)));
         Proxy::new(mesh, &basis, &emb, &desc, &first, params.maps.proxy_vertices)
     });
-    timings.maps_proxy = t.elapsed().as_secs_f64();
+    timings.maps_proxy = t.elapsed().as_secs_f64() - polish_sampling;
     // The maps stage works in the vertex indices of its domain: the proxy's, or the mesh's.
     let (probes, polish_anchors) = match &proxy {
         Some(p) => {
@@ -261,13 +262,15 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
     };
     let probes = &probes[..];
     let fine_adjacency = proxy.as_ref().map(|_| mesh.adjacency());
-    let found = {
+    // The mesh's embedding and basis, for judging the lifted maps after the maps stage.
+    let (fine_emb, fine_basis) = (&emb, &basis);
     let (emb, basis, mut ctx) = match &proxy {
         Some(p) => (&p.emb, &p.basis, Context::on_graph(&p.positions, p.adjacency.clone(), &p.emb, &p.wks, vinfo.diameter, &params.maps)),
         None => (&emb, &basis, Context::new(mesh, &emb, &desc, vinfo.diameter, &params.maps)),
     };
     ctx.basis = Some(basis);
-    let n = ctx.num_vertices();
+    // Vertices of the domain.
+    let nd = ctx.num_vertices();
     let agree_tol = params.maps.accept * 2.0 * vinfo.diameter;
     struct Found {
         dense: maps::DenseMap,
@@ -300,10 +303,10 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
     let profile = |cand: &&crate::voting::Candidate| {
         let anchors: Vec<(usize, usize)> = cand.pairs.iter().map(|&(a, b)| (probes[a], probes[b])).collect();
         let dense = maps::profile_map(&ctx, &anchors, probes, vinfo.eps, &params.maps)?;
-        if characterize::displacement(&dense.map, probes, &emb, vinfo.diameter) < params.min_displacement {
+        if characterize::displacement(&dense.map, probes, emb, vinfo.diameter) < params.min_displacement {
             return None;
         }
-        let distortion = characterize::sample_distortion(&dense.map, probes, &emb, vinfo.diameter);
+        let distortion = characterize::sample_distortion(&dense.map, probes, emb, vinfo.diameter);
         Some((dense, anchors[0], distortion))
     };
     let mut profiled: Vec<(maps::DenseMap, (usize, usize), f64)> = crate::parallel::map(&ranked, profile).into_iter().flatten().collect();
@@ -312,7 +315,7 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
     if !progress(0.8) {
         return Err(cancelled());
     }
-    let score = |m: &maps::DenseMap, distortion: f64| m.region_size as f64 / n as f64 - 10.0 * distortion;
+    let score = |m: &maps::DenseMap, distortion: f64| m.region_size as f64 / nd as f64 - 10.0 * distortion;
     profiled.sort_by(|a, b| score(&b.0, b.2).total_cmp(&score(&a.0, a.2)));
 
     // Two maps are one symmetry when at least `fraction` of the samples both map agree.
@@ -379,15 +382,15 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
                 }
             };
             // Refinement can slide a poor candidate into the identity.
-            if characterize::displacement(&dense.map, probes, &emb, vinfo.diameter) < params.min_displacement {
+            if characterize::displacement(&dense.map, probes, emb, vinfo.diameter) < params.min_displacement {
                 continue;
             }
         }
-        let distortion = characterize::sample_distortion(&dense.map, probes, &emb, vinfo.diameter);
+        let distortion = characterize::sample_distortion(&dense.map, probes, emb, vinfo.diameter);
         if distortion > params.max_distortion {
             continue;
         }
-        let complexity = characterize::complexity(&maps::functional_map(&basis, &dense.map, params.maps.fmap_size), params.complexity_width);
+        let complexity = characterize::complexity(&maps::functional_map(basis, &dense.map, params.maps.fmap_size), params.complexity_width);
         let candidate = Found { dense, seed, distortion, complexity };
         match same_as(&candidate.dense, &found, 0.5) {
             Some(i) if !better(&candidate, &found[i]) => {}
@@ -431,8 +434,8 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
             for (f, dense) in round.iter_mut().zip(polished) {
                 f.dense = dense;
                 // The map changed: so did its distortion and its functional map.
-                f.distortion = characterize::sample_distortion(&f.dense.map, probes, &emb, vinfo.diameter);
-                f.complexity = characterize::complexity(&maps::functional_map(&basis, &f.dense.map, params.maps.fmap_size), params.complexity_width);
+                f.distortion = characterize::sample_distortion(&f.dense.map, probes, emb, vinfo.diameter);
+                f.complexity = characterize::complexity(&maps::functional_map(basis, &f.dense.map, params.maps.fmap_size), params.complexity_width);
             }
         }
     }
@@ -450,7 +453,7 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
         }
     }
     let mut found = kept;
-    timings.maps_polish = t_stage.elapsed().as_secs_f64();
+    timings.maps_polish = t_stage.elapsed().as_secs_f64() + polish_sampling;
     let t_stage = Instant::now();
     // Phase 3 (beyond the paper): the symmetries of a shape form a group, so the composition of
     // two global symmetries is one too. Voting and the refinement budget find generators (two
@@ -473,12 +476,12 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
                     break;
                 }
                 let dense = maps::compose(&found[second].dense, &found[first].dense, probes);
-                if characterize::displacement(&dense.map, probes, &emb, vinfo.diameter) < params.min_displacement {
+                if characterize::displacement(&dense.map, probes, emb, vinfo.diameter) < params.min_displacement {
                     continue;
                 }
                 // Errors of the two maps add up at most: a composition distorting more than its
                 // factors together is partly wrong (one factor was only partly right).
-                let distortion = characterize::sample_distortion(&dense.map, probes, &emb, vinfo.diameter);
+                let distortion = characterize::sample_distortion(&dense.map, probes, emb, vinfo.diameter);
                 let bound = (found[first].distortion + found[second].distortion).min(params.max_distortion);
                 if distortion > bound {
                     continue;
@@ -489,7 +492,7 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
                 if known.is_some_and(|i| found[i].dense.global) {
                     continue;
                 }
-                let complexity = characterize::complexity(&maps::functional_map(&basis, &dense.map, params.maps.fmap_size), params.complexity_width);
+                let complexity = characterize::complexity(&maps::functional_map(basis, &dense.map, params.maps.fmap_size), params.complexity_width);
                 let seed = (found[first].seed.0, dense.image[found[first].seed.0]);
                 let composed = Found { dense, seed, distortion, complexity };
                 match known {
@@ -500,22 +503,19 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
         }
     }
     timings.maps_compose = t_stage.elapsed().as_secs_f64();
-    found
-    };
+    let (emb, basis, probes) = (fine_emb, fine_basis, &samples.vertices);
     // Proxy maps lifted to every vertex (concurrently; each is independent), then judged
     // again on the mesh: distortion on the samples, complexity of the mesh's functional map.
     let t_stage = Instant::now();
-    let mut found = found;
     if let (Some(p), Some(adjacency)) = (&proxy, &fine_adjacency) {
         let lifted = crate::parallel::map(&found, |f| p.lift(&mesh.vertices, adjacency, &f.dense));
         for (f, dense) in found.iter_mut().zip(lifted) {
             f.dense = dense;
             f.seed = (p.seeds[f.seed.0], p.seeds[f.seed.1]);
-            f.distortion = characterize::sample_distortion(&f.dense.map, &samples.vertices, &emb, vinfo.diameter);
-            f.complexity = characterize::complexity(&maps::functional_map(&basis, &f.dense.map, params.maps.fmap_size), params.complexity_width);
+            f.distortion = characterize::sample_distortion(&f.dense.map, probes, emb, vinfo.diameter);
+            f.complexity = characterize::complexity(&maps::functional_map(basis, &f.dense.map, params.maps.fmap_size), params.complexity_width);
         }
     }
-    let probes = &samples.vertices;
     timings.maps_lift = t_stage.elapsed().as_secs_f64();
     timings.maps = t.elapsed().as_secs_f64();
 
@@ -535,9 +535,9 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
     let mut symmetries: Vec<Symmetry> = found
         .into_iter()
         .map(|f| {
-            let fmap = maps::functional_map(&basis, &f.dense.map, params.maps.fmap_size);
+            let fmap = maps::functional_map(basis, &f.dense.map, params.maps.fmap_size);
             let complexity = f.complexity;
-            let order = characterize::order(&f.dense.map, probes, &emb, order_tol, params.max_order);
+            let order = characterize::order(&f.dense.map, probes, emb, order_tol, params.max_order);
             let kind = if f.dense.global { Kind::Global } else { Kind::Partial };
             let to_input = |v: usize| mesh.input_index[v] as usize;
             let mut map = vec![-1i64; mesh.info.input_vertices];

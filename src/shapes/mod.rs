@@ -8,7 +8,9 @@
 //! - [`creature`]: mirror-symmetric animals built on the icosphere (whose vertex set is exactly
 //!   symmetric under x → −x, so every vertex's true mirror image is known), optionally posed
 //!   (limbs rotated with smooth skinning) and noised (normal displacement), with ground truth:
-//!   [`quadruped`] (4 legs, head, tail) and [`star`] (n arms in a plane).
+//!   [`quadruped`] (4 legs, head, tail) and [`star`] (n arms in a plane);
+//! - [`subdivide`]: a mesh with every triangle split in four at its edge midpoints (the same
+//!   surface at 4× the triangles), for scaling a shape with ground truth to benchmark sizes.
 //!
 //! Every function returns a validated [`Mesh`].
 
@@ -407,6 +409,29 @@ pub fn star(arms: usize, level: u32) -> Creature {
     creature(level, [0.8, 0.35, 0.8], &limbs, 0.0, 0)
 }
 
+/// Flat midpoint subdivision: every triangle split into four at its edge midpoints. The surface
+/// is unchanged; vertex `v < n` stays vertex `v` (so a ground truth on the input vertices still
+/// holds), and each edge adds one vertex (n + #edges vertices in all). Non-manifold edges
+/// are split like the others (`params` decides whether the result is accepted).
+pub fn subdivide(mesh: &Mesh, params: &MeshParams) -> Result<Mesh, crate::mesh::MeshError> {
+    let mut vertices = mesh.vertices.clone();
+    let mut midpoint = std::collections::HashMap::new();
+    let mut mid = |a: u32, b: u32, vertices: &mut Vec<[f64; 3]>| -> u32 {
+        *midpoint.entry((a.min(b), a.max(b))).or_insert_with(|| {
+            let (p, q) = (vertices[a as usize], vertices[b as usize]);
+            vertices.push([(p[0] + q[0]) / 2.0, (p[1] + q[1]) / 2.0, (p[2] + q[2]) / 2.0]);
+            (vertices.len() - 1) as u32
+        })
+    };
+    let mut triangles = Vec::with_capacity(4 * mesh.triangles.len());
+    for &[a, b, c] in &mesh.triangles {
+        let (ab, bc, ca) = (mid(a, b, &mut vertices), mid(b, c, &mut vertices), mid(c, a, &mut vertices));
+        triangles.extend([[a, ab, ca], [ab, b, bc], [ca, bc, c], [ab, bc, ca]]);
+    }
+    Mesh::new(vertices, triangles, params)
+}
+
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -442,5 +467,18 @@ mod tests {
         let x = reflection(&c, -1.0, 1.0);
         let truth = c.limb_truth(0, 2);
         assert_eq!(truth.iter().filter(|(v, img)| img.contains(&(x[*v] as usize))).count(), 0);
+    }
+
+    /// Subdivision keeps the surface and the input vertices, and adds one vertex per edge.
+    #[test]
+    fn subdivision_keeps_surface_and_vertices() {
+        let c = quadruped(3, Pose::Walking, 0.0, 0);
+        let m = &c.mesh;
+        let s = subdivide(m, &MeshParams::default()).unwrap();
+        let edges = 3 * m.num_triangles() / 2; // closed surface
+        assert_eq!(s.num_vertices(), m.num_vertices() + edges);
+        assert_eq!(s.num_triangles(), 4 * m.num_triangles());
+        assert_eq!(&s.vertices[..m.num_vertices()], &m.vertices[..]);
+        assert!((s.area() - m.area()).abs() < 1e-9 * m.area());
     }
 }
