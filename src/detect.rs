@@ -240,9 +240,12 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
     }
 
     let t = Instant::now();
-    // Anchor candidates of the polish: farthest-point sampling is incremental, so these
-    // extend voting's samples.
-    let polish_anchors = farthest_point(&emb, params.maps.polish_samples.max(params.samples), params.seed).vertices;
+    // Anchor candidates of the polish: voting's samples, farthest-point sampling continued.
+    let polish_anchors = {
+        let mut more = samples.clone();
+        more.extend(&emb, params.maps.polish_samples.max(params.samples));
+        more.vertices
+    };
     let polish_sampling = t.elapsed().as_secs_f64();
     // On a large mesh the maps are made on a proxy of `proxy_vertices` vertices and lifted
     // (see `maps::proxy`); its first vertices are the samples and the polish's anchors.

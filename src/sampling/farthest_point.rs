@@ -26,27 +26,35 @@ pub fn farthest_point(emb: &BiharmonicEmbedding, count: usize, seed: u64) -> Sam
     z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
     z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
     let first = ((z ^ (z >> 31)) % n as u64) as usize;
-    let mut vertices = vec![first];
-    let mut radius = vec![f64::INFINITY; n];
-    let mut cell = vec![0usize; n];
-    let mut last = first;
-    loop {
+    let mut samples = Samples { vertices: vec![first], cell: vec![0usize; n], radius: vec![f64::INFINITY; n] };
+    samples.absorb(emb, first);
+    samples.extend(emb, count);
+    samples
+}
+
+impl Samples {
+    /// Continues the sampling up to `count` samples (at most n): the result is the one
+    /// [`farthest_point`] gives for `count` directly, at the cost of the new samples only.
+    pub fn extend(&mut self, emb: &BiharmonicEmbedding, count: usize) {
+        let count = count.min(emb.len());
+        while self.vertices.len() < count {
+            let (far, _) = self.radius.iter().enumerate().fold((0, -1.0), |b, (v, &r)| if r > b.1 { (v, r) } else { b });
+            self.vertices.push(far);
+            self.absorb(emb, far);
+        }
+    }
+
+    /// Updates the cells and radii with the newest sample `last`.
+    fn absorb(&mut self, emb: &BiharmonicEmbedding, last: usize) {
         let d = emb.from_sources(&[last]);
-        let s = vertices.len() - 1;
-        for v in 0..n {
-            if d[(v, 0)] < radius[v] {
-                radius[v] = d[(v, 0)];
-                cell[v] = s;
+        let s = self.vertices.len() - 1;
+        for (v, &dv) in d.col_as_slice(0).iter().enumerate() {
+            if dv < self.radius[v] {
+                self.radius[v] = dv;
+                self.cell[v] = s;
             }
         }
-        if vertices.len() == count {
-            break;
-        }
-        let (far, _) = radius.iter().enumerate().fold((0, -1.0), |b, (v, &r)| if r > b.1 { (v, r) } else { b });
-        vertices.push(far);
-        last = far;
     }
-    Samples { vertices, cell, radius }
 }
 
 #[cfg(test)]
@@ -65,6 +73,13 @@ mod tests {
         let a = farthest_point(&emb, 20, 7);
         let b = farthest_point(&emb, 20, 7);
         assert_eq!(a.vertices, b.vertices);
+        // Extending is sampling further: the same as asking for more at once.
+        let mut c = a.clone();
+        c.extend(&emb, 30);
+        let d = farthest_point(&emb, 30, 7);
+        assert_eq!(c.vertices, d.vertices);
+        assert_eq!(c.cell, d.cell);
+        assert_eq!(&c.vertices[..20], &a.vertices[..]);
         let mut uniq = a.vertices.clone();
         uniq.sort();
         uniq.dedup();
