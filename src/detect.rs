@@ -255,6 +255,7 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
         Proxy::new(mesh, &basis, &emb, &desc, &first, params.maps.proxy_vertices)
     });
     timings.maps_proxy = t.elapsed().as_secs_f64() - polish_sampling;
+    let t_stage = Instant::now();
     // The maps stage works in the vertex indices of its domain: the proxy's, or the mesh's.
     let (probes, polish_anchors) = match &proxy {
         Some(p) => {
@@ -313,7 +314,7 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
         Some((dense, anchors[0], distortion))
     };
     let mut profiled: Vec<(maps::DenseMap, (usize, usize), f64)> = crate::parallel::map(&ranked, profile).into_iter().flatten().collect();
-    timings.maps_profile = t.elapsed().as_secs_f64();
+    timings.maps_profile = t_stage.elapsed().as_secs_f64();
     let t_stage = Instant::now();
     if !progress(0.8) {
         return Err(cancelled());
