@@ -338,9 +338,22 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
     let mut ahead: Option<(usize, maps::DenseMap)> = None;
     let skip = |dense: &maps::DenseMap, found: &[Found]| same_as(dense, found, 0.8).is_some_and(|i| found[i].dense.refined);
     let parallel = crate::parallel::available();
-    for pi in 0..profiled.len() {
+    // The order of work: by score, but a candidate that is none of the symmetries found so far
+    // goes before the variants of found ones. Refining a variant can give a better version
+    // (TOSCA's michael0 and victoria0 owe their mirror to the third refinement), but variants
+    // ranked first must not use up the refinement budget before a new symmetry gets its turn
+    // (a noisy quadruped's four mirror variants did, and its front↔back map went unrefined).
+    let mut done = vec![false; profiled.len()];
+    let order = |done: &[bool], found: &[Found]| -> Vec<usize> {
+        let open: Vec<usize> = (0..done.len()).filter(|&i| !done[i]).collect();
+        let (novel, known): (Vec<usize>, Vec<usize>) = open.into_iter().partition(|&i| same_as(&profiled[i].0, found, 0.5).is_none());
+        novel.into_iter().chain(known).collect()
+    };
+    for step in 0..profiled.len() {
+        let pi = order(&done, &found)[0];
+        done[pi] = true;
         let (mut dense, seed) = (profiled[pi].0.clone(), profiled[pi].1);
-        if !progress(0.8 + 0.15 * pi as f64 / total as f64) {
+        if !progress(0.8 + 0.15 * step as f64 / total as f64) {
             return Err(cancelled());
         }
         if found.len() >= params.max_symmetries {
@@ -350,6 +363,8 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
         if skip(&dense, &found) {
             continue;
         }
+        let dbg = std::env::var("DBG").is_ok();
+        if dbg { eprintln!("cand {pi}: seed {:?} region {} global {} dist {:.4} refinements {refinements} fruitless {fruitless} found {}", seed, dense.region_size, dense.global, profiled[pi].2, found.len()); }
         if maps::refinable(&ctx, &dense, &params.maps) {
             if refinements == params.max_refinements || fruitless >= params.patience {
                 continue;
@@ -362,13 +377,14 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
                 other => {
                     // A speculation for a later candidate is kept; one for a candidate that
                     // was skipped meanwhile is dropped (it would block the next speculation).
-                    ahead = other.filter(|&(j, _)| j > pi);
+                    ahead = other.filter(|&(j, _)| !done[j]);
                     // The next candidate that would be refined if this one adds nothing new;
                     // failing that, the next one that would be if this one replaces the map
                     // it now duplicates (a better version: the duplicates change with it).
                     let next = (parallel && ahead.is_none() && refinements < params.max_refinements && fruitless < params.patience)
                         .then(|| {
-                            let later = || (pi + 1..profiled.len()).filter(|&j| maps::refinable(&ctx, &profiled[j].0, &params.maps));
+                            let upcoming = order(&done, &found);
+                            let later = || upcoming.iter().copied().filter(|&j| maps::refinable(&ctx, &profiled[j].0, &params.maps));
                             later().find(|&j| !skip(&profiled[j].0, &found)).or_else(|| later().next())
                         })
                         .flatten();
@@ -385,12 +401,19 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
                     }
                 }
             };
+            // A refinement that left its candidate (it drifted to another map from both starts)
+            // marks an unstable candidate: not a symmetry (a noisy quadruped's order-3 junk
+            // map passed every other test, and its compositions flooded the output).
+            if !dense.refined {
+                continue;
+            }
             // Refinement can slide a poor candidate into the identity.
             if characterize::displacement(&dense.map, probes, emb, vinfo.diameter) < params.min_displacement {
                 continue;
             }
         }
         let distortion = characterize::sample_distortion(&dense.map, probes, emb, vinfo.diameter);
+        if dbg { eprintln!("   -> region {} global {} refined {} dist {:.4} same_as {:?}", dense.region_size, dense.global, dense.refined, distortion, same_as(&dense, &found, 0.5)); }
         if distortion > params.max_distortion {
             continue;
         }
@@ -491,15 +514,15 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
                     continue;
                 }
                 // A known symmetry is not reported twice, but a partial version of it (the
-                // region cut short where the map was hard) gives way to the global composition.
+                // region cut short where the map was hard), or a global one the composition
+                // beats (`better`: a noisy quadruped's diagonal leg map found directly, whose
+                // own compositions were junk), gives way to the composition.
                 let known = same_as(&dense, &found, 0.5);
-                if known.is_some_and(|i| found[i].dense.global) {
-                    continue;
-                }
                 let complexity = characterize::complexity(&maps::functional_map(basis, &dense.map, params.maps.fmap_size), params.complexity_width);
                 let seed = (found[first].seed.0, dense.image[found[first].seed.0]);
                 let composed = Found { dense, seed, distortion, complexity };
                 match known {
+                    Some(i) if found[i].dense.global && !better(&composed, &found[i]) => {}
                     Some(i) => found[i] = composed,
                     None => found.push(composed),
                 }
