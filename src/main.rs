@@ -58,7 +58,7 @@ enum Command {
         /// Passes of the geodesic polish of every map (0 disables it).
         #[arg(long, default_value_t = 2)]
         polish: usize,
-        /// On meshes of more than twice this many vertices, make the maps on a proxy of this
+        /// On meshes of more than 1.5 times this many vertices, make the maps on a proxy of this
         /// many vertices and lift them to every vertex (0: always on the whole mesh).
         #[arg(long, default_value_t = 6000)]
         proxy_vertices: usize,

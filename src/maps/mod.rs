@@ -83,7 +83,7 @@ pub struct MapParams {
     /// voting's; a superset of them). On posed TOSCA 64 → 128 gave 85.0 → 86.4% mean acc@0.05;
     /// 192 gave 86.5%.
     pub polish_samples: usize,
-    /// On a mesh of more than twice this many vertices, the maps are made
+    /// On a mesh of more than 1.5 times this many vertices, the maps are made
     /// on a proxy of this many vertices and lifted to every vertex ([`proxy`]; default 6000,
     /// 0 disables it).
     pub proxy_vertices: usize,

@@ -40,7 +40,7 @@ use crate::mesh::Mesh;
 use crate::spectral::Eigenbasis;
 
 /// A mesh needs a proxy when it has more than this many times `proxy_vertices` vertices.
-pub(crate) const PROXY_MARGIN: f64 = 2.0;
+pub(crate) const PROXY_MARGIN: f64 = 1.5;
 
 /// Whether the maps of a mesh of `n` vertices are made on a proxy.
 pub fn wanted(n: usize, params: &super::MapParams) -> bool {
