@@ -3,8 +3,10 @@
 //!
 //! The dense maps (profile matching, ZoomOut, the geodesic polish) cost O(n) per step with
 //! large constants, and a symmetry map is a smooth, low-dimensional object: a few thousand
-//! well spread vertices determine it. So on a mesh of `n ≫ m` vertices the maps stage runs on
-//! a proxy of `m` vertices (default 6000, [`super::MapParams::proxy_vertices`]):
+//! well spread vertices determine it. So on a mesh of more than `1.5 m` vertices the maps
+//! stage runs on a proxy of `m` vertices (default 6000, [`super::MapParams::proxy_vertices`];
+//! the 41k posed quadruped: maps 6.1 → 1.1 s, mirror 95.6 → 95.3% acc@0.05, all 12 leg maps
+//! 0.94–1.00 acc@0.1):
 //!
 //! 1. **Seeds**: the farthest-point samples already used (voting's and the polish's, so they
 //!    keep their indices `0, 1, …`), extended by farthest-point sampling in the edge-graph
