@@ -214,6 +214,14 @@ sym_status sym_params_set_groups(sym_params *params,
                                  size_t value);
 
 /**
+ * Size of the proxy on which a large mesh's maps are made and then lifted to every vertex:
+ * meshes of more than 1.5 times this many vertices use one (default 6000); 0 makes the maps
+ * on the whole mesh (slower above 9,000 vertices, not more accurate as measured). 0 or
+ * 1000–10⁶. Returns `SYM_STATUS_INVALID_ARGUMENT` (settings unchanged) outside the range.
+ */
+sym_status sym_params_set_proxy_vertices(sym_params *params, size_t value);
+
+/**
  * Nonzero: accept edges shared by more than two triangles (default 0: refuse them). Returns `SYM_STATUS_INVALID_ARGUMENT` (settings unchanged) outside the range.
  */
 sym_status sym_params_set_allow_non_manifold(sym_params *params,

@@ -39,6 +39,32 @@ fn detect_get_map_free() {
     sym_params_free(p);
 }
 
+/// The proxy through the C API: a 2.5k quadruped with a 1,000-vertex proxy still gets a map
+/// of every vertex, mostly onto its mirror image; an out-of-range size is refused.
+#[test]
+fn proxy_size_is_a_parameter() {
+    let c = shapes::quadruped(4, Pose::Rest, 0.0, 0);
+    let v: Vec<f64> = c.mesh.vertices.iter().flatten().copied().collect();
+    let t: Vec<u32> = c.mesh.triangles.iter().flatten().copied().collect();
+    let p = sym_params_new();
+    assert_eq!(sym_params_set_proxy_vertices(p, 999), sym_status::SYM_STATUS_INVALID_ARGUMENT);
+    assert_eq!(sym_params_set_proxy_vertices(p, 1000), sym_status::SYM_STATUS_OK);
+    let mut r: *mut sym_result = ptr::null_mut();
+    let st = unsafe { sym_detect(v.as_ptr(), c.mesh.num_vertices(), t.as_ptr(), c.mesh.num_triangles(), p, None, ptr::null_mut(), &mut r) };
+    assert_eq!(st, sym_status::SYM_STATUS_OK, "{}", last_error());
+    let mut s: sym_symmetry = unsafe { std::mem::zeroed() };
+    s.struct_size = std::mem::size_of::<sym_symmetry>();
+    assert_eq!(unsafe { sym_get_map(r, 0, &mut s) }, sym_status::SYM_STATUS_OK);
+    let map = unsafe { std::slice::from_raw_parts(s.map, s.num_vertices) };
+    assert!(map.iter().all(|&w| w >= 0 && (w as usize) < map.len()));
+    // Lifted from the proxy: within 0.05·√area of the mirror image.
+    let truth: Vec<(usize, Vec<usize>)> = (0..map.len()).map(|v| (v, vec![c.mirror[v] as usize])).collect();
+    let acc = intrinsym::eval::accuracy(&c.mesh, map, &truth, &[0.05])[0];
+    assert!(acc >= 0.95, "acc@0.05 {acc}");
+    sym_free(r);
+    sym_params_free(p);
+}
+
 #[test]
 fn failures_leave_out_untouched_and_explain() {
     let v = [0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, f64::NAN, 0.0];

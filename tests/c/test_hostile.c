@@ -139,6 +139,9 @@ int main(int argc, char **argv) {
     expect("wks quantile 2", sym_params_set_wks_quantile(p, 2.0), SYM_STATUS_INVALID_ARGUMENT, 1);
     expect("accept inf", sym_params_set_accept(p, INFINITY), SYM_STATUS_INVALID_ARGUMENT, 1);
     expect("groups 1000", sym_params_set_groups(p, 1000), SYM_STATUS_INVALID_ARGUMENT, 1);
+    expect("proxy 10", sym_params_set_proxy_vertices(p, 10), SYM_STATUS_INVALID_ARGUMENT, 1);
+    expect("proxy off", sym_params_set_proxy_vertices(p, 0), SYM_STATUS_OK, 0);
+    expect("proxy 6000", sym_params_set_proxy_vertices(p, 6000), SYM_STATUS_OK, 0);
     expect("valid setter", sym_params_set_groups(p, 0), SYM_STATUS_OK, 0);
     {
         sym_params *freed = sym_params_new();
