@@ -17,6 +17,21 @@ fn run(c: &shapes::Creature) -> intrinsym::Detection {
     detect(&c.mesh, &Params::default(), &mut |_| true).unwrap()
 }
 
+/// The worst of the 12 ordered leg → leg maps, each scored by the best reported symmetry at
+/// acc@0.1 (a leg is itself mirror-symmetric, so either image counts): `(acc, i, j)`.
+fn worst_leg_map(c: &shapes::Creature, d: &intrinsym::Detection) -> (f64, usize, usize) {
+    let mut worst = (f64::INFINITY, 0, 0);
+    for i in 0..4 {
+        for j in (0..4).filter(|&j| j != i) {
+            let best = d.symmetries.iter().map(|s| eval::accuracy(&c.mesh, &s.map, &c.limb_truth(i, j), &[0.1])[0]).fold(0.0, f64::max);
+            if best < worst.0 {
+                worst = (best, i, j);
+            }
+        }
+    }
+    worst
+}
+
 /// acc@(0.05, 0.10) of the strongest symmetry against the left–right mirror.
 fn strongest_mirror_accuracy(c: &shapes::Creature) -> (intrinsym::Detection, Vec<f64>) {
     let d = run(c);
@@ -56,12 +71,8 @@ fn posed_quadruped_mirror() {
     // Every one of the 12 ordered leg → leg maps is covered by a reported symmetry: left↔right
     // by the mirror, front↔hind by the front↔back near-symmetry, the diagonals by their
     // composition. Measured 0.85–1.00 at acc@0.1 (the issue asks 0.8).
-    for i in 0..4 {
-        for j in (0..4).filter(|&j| j != i) {
-            let best = d.symmetries.iter().map(|s| eval::accuracy(&c.mesh, &s.map, &c.limb_truth(i, j), &[0.1])[0]).fold(0.0, f64::max);
-            assert!(best >= 0.75, "leg {i} -> leg {j}: {best}");
-        }
-    }
+    let (worst, i, j) = worst_leg_map(&c, &d);
+    assert!(worst >= 0.75, "leg {i} -> leg {j}: {worst}");
 }
 
 #[test]
@@ -102,12 +113,8 @@ fn maps_on_a_proxy_are_lifted_to_every_vertex() {
         assert!(s.map.iter().all(|&t| t >= 0 && (t as usize) < n));
         let acc = eval::accuracy(&c.mesh, &s.map, &mirror_truth(&c), &[0.05])[0];
         assert!(acc >= 0.88, "seed {seed}: mirror acc@0.05 {acc}");
-        for i in 0..4 {
-            for j in (0..4).filter(|&j| j != i) {
-                let best = d.symmetries.iter().map(|s| eval::accuracy(&c.mesh, &s.map, &c.limb_truth(i, j), &[0.1])[0]).fold(0.0, f64::max);
-                assert!(best >= 0.75, "seed {seed}: leg {i} -> leg {j}: {best}");
-            }
-        }
+        let (worst, i, j) = worst_leg_map(&c, &d);
+        assert!(worst >= 0.75, "seed {seed}: leg {i} -> leg {j}: {worst}");
     }
 }
 
@@ -124,12 +131,8 @@ fn noisy_quadrupeds_keep_every_leg_map() {
             let d = run(&c);
             let first = eval::accuracy(&c.mesh, &d.symmetries[0].map, &mirror_truth(&c), &[0.05])[0];
             assert!(first >= 0.93, "noise {noise} seed {seed}: strongest symmetry's mirror acc@0.05 {first}");
-            for i in 0..4 {
-                for j in (0..4).filter(|&j| j != i) {
-                    let best = d.symmetries.iter().map(|s| eval::accuracy(&c.mesh, &s.map, &c.limb_truth(i, j), &[0.1])[0]).fold(0.0, f64::max);
-                    assert!(best >= 0.8, "noise {noise} seed {seed}: leg {i} -> leg {j}: {best}");
-                }
-            }
+            let (worst, i, j) = worst_leg_map(&c, &d);
+            assert!(worst >= 0.8, "noise {noise} seed {seed}: leg {i} -> leg {j}: {worst}");
         }
     }
 }

@@ -13,11 +13,17 @@ fn last_error() -> String {
     unsafe { CStr::from_ptr(buf.as_ptr()) }.to_string_lossy().into_owned()
 }
 
-#[test]
-fn detect_get_map_free() {
-    let c = shapes::quadruped(3, Pose::Rest, 0.0, 0);
+/// The rest-pose quadruped at `level` as the C API's flat arrays.
+fn quadruped_arrays(level: u32) -> (shapes::Creature, Vec<f64>, Vec<u32>) {
+    let c = shapes::quadruped(level, Pose::Rest, 0.0, 0);
     let v: Vec<f64> = c.mesh.vertices.iter().flatten().copied().collect();
     let t: Vec<u32> = c.mesh.triangles.iter().flatten().copied().collect();
+    (c, v, t)
+}
+
+#[test]
+fn detect_get_map_free() {
+    let (c, v, t) = quadruped_arrays(3);
     let p = sym_params_new();
     assert_eq!(sym_params_set_samples(p, 48), sym_status::SYM_STATUS_OK);
     let mut r: *mut sym_result = ptr::null_mut();
@@ -43,9 +49,7 @@ fn detect_get_map_free() {
 /// of every vertex, mostly onto its mirror image; an out-of-range size is refused.
 #[test]
 fn proxy_size_is_a_parameter() {
-    let c = shapes::quadruped(4, Pose::Rest, 0.0, 0);
-    let v: Vec<f64> = c.mesh.vertices.iter().flatten().copied().collect();
-    let t: Vec<u32> = c.mesh.triangles.iter().flatten().copied().collect();
+    let (c, v, t) = quadruped_arrays(4);
     let p = sym_params_new();
     assert_eq!(sym_params_set_proxy_vertices(p, 999), sym_status::SYM_STATUS_INVALID_ARGUMENT);
     assert_eq!(sym_params_set_proxy_vertices(p, 1000), sym_status::SYM_STATUS_OK);
@@ -92,9 +96,7 @@ unsafe extern "C" fn stop_at_half(fraction: f32, user: *mut std::ffi::c_void) ->
 
 #[test]
 fn progress_callback_cancels() {
-    let c = shapes::quadruped(3, Pose::Rest, 0.0, 0);
-    let v: Vec<f64> = c.mesh.vertices.iter().flatten().copied().collect();
-    let t: Vec<u32> = c.mesh.triangles.iter().flatten().copied().collect();
+    let (c, v, t) = quadruped_arrays(3);
     let mut seen = 0.0f32;
     let mut r: *mut sym_result = ptr::null_mut();
     let st = unsafe {

@@ -259,6 +259,28 @@ pub(crate) fn squared_distance(a: &[f64], b: &[f64]) -> f64 {
     s
 }
 
+/// Visits every vertex reachable from `roots` (CSR `adjacency`) breadth-first, calling
+/// `visit(v, u)` when `u` is first reached, from `v` (the roots themselves are not visited).
+pub(crate) fn breadth_first(adjacency: &(Vec<usize>, Vec<u32>), roots: &[usize], mut visit: impl FnMut(usize, usize)) {
+    let n = adjacency.0.len() - 1;
+    let mut done = vec![false; n];
+    let mut queue = std::collections::VecDeque::with_capacity(n);
+    for &r in roots {
+        if !std::mem::replace(&mut done[r], true) {
+            queue.push_back(r);
+        }
+    }
+    while let Some(v) = queue.pop_front() {
+        for &u in &adjacency.1[adjacency.0[v]..adjacency.0[v + 1]] {
+            let u = u as usize;
+            if !std::mem::replace(&mut done[u], true) {
+                visit(v, u);
+                queue.push_back(u);
+            }
+        }
+    }
+}
+
 /// Greedy descent of `cost` on the mesh graph (CSR `adjacency`) from `start`: moves to the best
 /// neighbour while it improves. Returns the vertex and its cost.
 pub(crate) fn greedy_descent(adjacency: &(Vec<usize>, Vec<u32>), start: usize, mut cost: impl FnMut(usize) -> f64) -> (usize, f64) {

@@ -136,38 +136,26 @@ impl Proxy {
         let (coff, cnbr) = &self.adjacency;
         let d = |a: &[f64; 3], b: &[f64; 3]| ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt();
         let mut image = vec![usize::MAX; n];
-        let mut done = vec![false; n];
-        // Breadth-first from the seeds (each maps to its proxy image), so that a vertex's
-        // neighbours are placed before it and give it a start.
-        let mut queue: VecDeque<usize> = VecDeque::with_capacity(n);
+        // Each seed maps to its proxy image; the other vertices are placed breadth-first from
+        // the seeds, so that a vertex's neighbour is placed before it and gives it a start.
         for (c, &s) in self.seeds.iter().enumerate() {
             image[s] = self.seeds[m.image[c]];
-            done[s] = true;
-            queue.push_back(s);
         }
         // (distance from v to seed c', image position of c') for c and its neighbours.
         let mut frame: Vec<(f64, [f64; 3])> = Vec::new();
-        while let Some(v) = queue.pop_front() {
-            for &u in &adjacency.1[adjacency.0[v]..adjacency.0[v + 1]] {
-                let u = u as usize;
-                if done[u] {
-                    continue;
-                }
-                done[u] = true;
-                let c = self.owner[u] as usize;
-                frame.clear();
-                for &c2 in std::iter::once(&(c as u32)).chain(&cnbr[coff[c]..coff[c + 1]]) {
-                    let c2 = c2 as usize;
-                    frame.push((d(&positions[u], &self.positions[c2]), positions[self.seeds[m.image[c2]]]));
-                }
-                let cost = |w: usize| frame.iter().map(|(dv, t)| (dv - d(&positions[w], t)).abs()).sum::<f64>();
-                let own = self.seeds[m.image[c]];
-                let from_neighbour = image[v];
-                let start = if cost(from_neighbour) < cost(own) { from_neighbour } else { own };
-                image[u] = super::greedy_descent(adjacency, start, cost).0;
-                queue.push_back(u);
+        super::breadth_first(adjacency, &self.seeds, |v, u| {
+            let c = self.owner[u] as usize;
+            frame.clear();
+            for &c2 in std::iter::once(&(c as u32)).chain(&cnbr[coff[c]..coff[c + 1]]) {
+                let c2 = c2 as usize;
+                frame.push((d(&positions[u], &self.positions[c2]), positions[self.seeds[m.image[c2]]]));
             }
-        }
+            let cost = |w: usize| frame.iter().map(|(dv, t)| (dv - d(&positions[w], t)).abs()).sum::<f64>();
+            let own = self.seeds[m.image[c]];
+            let from_neighbour = image[v];
+            let start = if cost(from_neighbour) < cost(own) { from_neighbour } else { own };
+            image[u] = super::greedy_descent(adjacency, start, cost).0;
+        });
         // Vertices of components without a seed (none: every component gets one) keep themselves.
         for (v, w) in image.iter_mut().enumerate() {
             if *w == usize::MAX {
@@ -280,17 +268,23 @@ mod tests {
     use crate::shapes::{self, Pose};
     use crate::spectral::EigenParams;
 
+    /// A quadruped, its basis (k = 20) and the proxy of `size` vertices starting at `first`.
+    fn proxy_of(level: u32, pose: Pose, first: &[usize], size: usize) -> (shapes::Creature, Eigenbasis, Proxy) {
+        let c = shapes::quadruped(level, pose, 0.0, 0);
+        let basis = Eigenbasis::compute(&c.mesh, &EigenParams { k: 20, ..Default::default() }).unwrap();
+        let emb = biharmonic(&basis);
+        let desc = wks(&basis, &WksParams::default());
+        let p = Proxy::new(&c.mesh, &basis, &emb, &desc, first, size);
+        (c, basis, p)
+    }
+
     /// The proxy keeps the given seeds first, covers the mesh with connected cells of even
     /// size, and conserves the area.
     #[test]
     fn cells_partition_the_mesh() {
-        let c = shapes::quadruped(4, Pose::Walking, 0.0, 0);
-        let n = c.mesh.num_vertices();
-        let basis = Eigenbasis::compute(&c.mesh, &EigenParams { k: 20, ..Default::default() }).unwrap();
-        let emb = biharmonic(&basis);
-        let desc = wks(&basis, &WksParams::default());
         let first = [7usize, 100, 2000];
-        let p = Proxy::new(&c.mesh, &basis, &emb, &desc, &first, 500);
+        let (c, basis, p) = proxy_of(4, Pose::Walking, &first, 500);
+        let n = c.mesh.num_vertices();
         assert_eq!(p.len(), 500);
         assert_eq!(&p.seeds[..3], &first);
         let mut sizes = vec![0usize; p.len()];
@@ -328,12 +322,8 @@ mod tests {
     /// every vertex (trilateration inside the cells), with the cells' region.
     #[test]
     fn lift_recovers_the_mirror_between_seeds() {
-        let c = shapes::quadruped(5, Pose::Rest, 0.0, 0);
+        let (c, basis, p) = proxy_of(5, Pose::Rest, &[0], 1500);
         let n = c.mesh.num_vertices();
-        let basis = Eigenbasis::compute(&c.mesh, &EigenParams { k: 20, ..Default::default() }).unwrap();
-        let emb = biharmonic(&basis);
-        let desc = wks(&basis, &WksParams::default());
-        let p = Proxy::new(&c.mesh, &basis, &emb, &desc, &[0], 1500);
         // The proxy map: each seed to the seed whose cell holds its mirror image.
         let image: Vec<usize> = p.seeds.iter().map(|&s| p.owner[c.mirror[s] as usize] as usize).collect();
         let image_of = |v: usize| image[p.owner[v] as usize];

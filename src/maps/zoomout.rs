@@ -79,25 +79,11 @@ pub fn zoomout(basis: &Eigenbasis, adjacency: &(Vec<usize>, Vec<u32>), map: &mut
         if k >= kmax && sub.len() < n {
             // Last iteration on a large mesh: every other vertex, breadth-first from the subset.
             let t = targets(None, &c);
-            let mut done = vec![false; n];
-            let mut queue = std::collections::VecDeque::new();
-            for &v in &sub {
-                done[v] = true;
-                queue.push_back(v);
-            }
-            while let Some(v) = queue.pop_front() {
-                for &u in &adjacency.1[adjacency.0[v]..adjacency.0[v + 1]] {
-                    let u = u as usize;
-                    if done[u] {
-                        continue;
-                    }
-                    done[u] = true;
-                    let target = t.col_as_slice(u);
-                    let start = if dist(map[v], target) < dist(map[u], target) { map[v] } else { map[u] };
-                    map[u] = super::greedy_descent(adjacency, start, |w| dist(w, target)).0;
-                    queue.push_back(u);
-                }
-            }
+            super::breadth_first(adjacency, &sub, |v, u| {
+                let target = t.col_as_slice(u);
+                let start = if dist(map[v], target) < dist(map[u], target) { map[v] } else { map[u] };
+                map[u] = super::greedy_descent(adjacency, start, |w| dist(w, target)).0;
+            });
         }
         if k >= kmax {
             break;
