@@ -74,6 +74,7 @@ void FilterIntrinsymPlugin::initParameterSet(QAction *, MeshModel &, RichParamet
     parlst.addParam(RichFloat("votingEps", 0.04f, "Voting tolerance", "Distance tolerance of the voting, as a fraction of the biharmonic diameter."));
     parlst.addParam(RichFloat("accept", 0.03f, "Region tolerance", "A vertex belongs to a symmetry's region when its distances are preserved within this fraction of the diameter."));
     parlst.addParam(RichInt("seed", 0, "Seed", "Random seed: results are deterministic for a seed."));
+    parlst.addParam(RichInt("proxyVertices", 6000, "Proxy vertices", "Meshes of more than 1.5 times this many vertices get their maps on a proxy of this many vertices, lifted to every vertex (much faster; 0 = always the whole mesh; else 1000 to 1000000)."));
     parlst.addParam(RichEnum("show", SHOW_STRONGEST, QStringList() << "Strongest" << "All" << "Index", "Show", "Which symmetry to write: the strongest, all (quality = best confidence over all), or the one at Index."));
     parlst.addParam(RichInt("index", 0, "Index", "Symmetry shown when Show is Index (0 = strongest)."));
     parlst.addParam(RichEnum("colouring", COLOUR_CORRESPONDENCE, QStringList() << "Correspondence" << "Groups" << "Quality", "Colouring", "Correspondence: a vertex and its image share a colour. Groups: regions painted by symmetry group. Quality: colour ramp of the confidence."));
@@ -113,13 +114,14 @@ bool FilterIntrinsymPlugin::applyFilter(QAction *, MeshDocument &md, const RichP
 
     sym_params *params = sym_params_new();
     sym_status st = SYM_STATUS_OK;
-    const int eigenpairs = par.getInt("eigenpairs"), samples = par.getInt("samples"), seed = par.getInt("seed");
+    const int eigenpairs = par.getInt("eigenpairs"), samples = par.getInt("samples"), seed = par.getInt("seed"), proxy = par.getInt("proxyVertices");
     if (st == SYM_STATUS_OK) st = eigenpairs > 0 ? sym_params_set_eigenpairs(params, size_t(eigenpairs)) : SYM_STATUS_INVALID_ARGUMENT;
     if (st == SYM_STATUS_OK) st = samples > 0 ? sym_params_set_samples(params, size_t(samples)) : SYM_STATUS_INVALID_ARGUMENT;
     if (st == SYM_STATUS_OK) st = sym_params_set_wks_quantile(params, par.getFloat("wksQuantile"));
     if (st == SYM_STATUS_OK) st = sym_params_set_voting_eps(params, par.getFloat("votingEps"));
     if (st == SYM_STATUS_OK) st = sym_params_set_accept(params, par.getFloat("accept"));
     if (st == SYM_STATUS_OK) st = sym_params_set_seed(params, uint64_t(seed < 0 ? 0 : seed));
+    if (st == SYM_STATUS_OK) st = proxy >= 0 ? sym_params_set_proxy_vertices(params, size_t(proxy)) : SYM_STATUS_INVALID_ARGUMENT;
     if (st != SYM_STATUS_OK) {
         sym_params_free(params);
         return fail(QString("invalid parameter: ") + last_error());
