@@ -205,13 +205,14 @@ fn mismatch(profile: &[(usize, f64)], dst: &Mat<f64>, w: usize) -> f64 {
 
 /// Trimmed mismatch: the mean of the smallest `TRIM` fraction of `|d(v,a_i) − d(w,b_i)|`, robust
 /// to the wrong correspondences a voting candidate still contains (up to a third of them).
-fn robust_mismatch(profile: &[(usize, f64)], dst: &Mat<f64>, w: usize, scratch: &mut Vec<f64>) -> f64 {
+fn robust_mismatch(profile: &[(usize, f64)], dst: &Mat<f64>, w: usize, scratch: &mut Vec<u64>) -> f64 {
     const TRIM: f64 = 0.6;
+    // Non-negative floats order like their bit patterns: the selection is on integers.
     scratch.clear();
-    scratch.extend(profile.iter().map(|&(i, p)| (p - dst[(w, i)]).abs()));
+    scratch.extend(profile.iter().map(|&(i, p)| (p - dst[(w, i)]).abs().to_bits()));
     let keep = ((TRIM * scratch.len() as f64).ceil() as usize).clamp(1, scratch.len());
-    scratch.select_nth_unstable_by(keep - 1, |a, b| a.total_cmp(b));
-    scratch[..keep].iter().sum::<f64>() / keep as f64
+    scratch.select_nth_unstable(keep - 1);
+    scratch[..keep].iter().map(|&b| f64::from_bits(b)).sum::<f64>() / keep as f64
 }
 
 /// The `k` anchors nearest to a vertex among `candidates`, from its distance to each anchor
