@@ -221,7 +221,9 @@ fn nearest_profile(dist: impl Fn(usize) -> f64, candidates: impl IntoIterator<It
     out.clear();
     out.extend(candidates.into_iter().map(|i| (i, dist(i))));
     if out.len() > k {
-        out.select_nth_unstable_by(k - 1, |a, b| a.1.total_cmp(&b.1));
+        // Distances are non-negative: their bit patterns order like them (and like
+        // `total_cmp`, so the selection is the same), compared as integers.
+        out.select_nth_unstable_by_key(k - 1, |a| a.1.to_bits());
         out.truncate(k);
     }
 }
