@@ -12,7 +12,7 @@
 pub mod cotan;
 pub mod eigen;
 pub mod factor;
-mod kernels;
+pub(crate) mod kernels;
 pub mod mass;
 
 pub use eigen::{EigenInfo, EigenParams, Solver};
