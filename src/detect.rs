@@ -246,26 +246,20 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
         more.extend(&emb, params.maps.polish_samples.max(params.samples));
         more.vertices
     };
+    debug_assert!(polish_anchors.starts_with(&samples.vertices));
     let polish_sampling = t.elapsed().as_secs_f64();
     // On a large mesh the maps are made on a proxy of `proxy_vertices` vertices and lifted
     // (see `maps::proxy`); its first vertices are the samples and the polish's anchors.
-    let proxy = maps::proxy::wanted(n, &params.maps).then(|| {
-        let mut first = samples.vertices.clone();
-        first.extend(polish_anchors.iter().copied().filter(|a| !samples.vertices.contains(a)));
-        Proxy::new(mesh, &basis, &emb, &desc, &first, params.maps.proxy_vertices)
-    });
+    let proxy = maps::proxy::wanted(n, &params.maps).then(|| Proxy::new(mesh, &basis, &emb, &desc, &polish_anchors, params.maps.proxy_vertices));
     timings.maps_proxy = t.elapsed().as_secs_f64() - polish_sampling;
     let t_stage = Instant::now();
-    // The maps stage works in the vertex indices of its domain: the proxy's, or the mesh's.
-    let (probes, polish_anchors) = match &proxy {
-        Some(p) => {
-            let index = |v: &usize| p.seeds.iter().position(|s| s == v).expect("samples are seeds");
-            (samples.vertices.iter().map(index).collect::<Vec<usize>>(), polish_anchors.iter().map(index).collect::<Vec<usize>>())
-        }
+    // The maps stage works in the vertex indices of its domain: the proxy's, whose first
+    // vertices are the polish's anchors (voting's samples first), or the mesh's.
+    let (probes, polish_anchors): (Vec<usize>, Vec<usize>) = match &proxy {
+        Some(_) => ((0..samples.vertices.len()).collect(), (0..polish_anchors.len()).collect()),
         None => (samples.vertices.clone(), polish_anchors),
     };
     let probes = &probes[..];
-    let fine_adjacency = proxy.as_ref().map(|_| mesh.adjacency());
     // The mesh's embedding and basis, for judging the lifted maps after the maps stage.
     let (fine_emb, fine_basis) = (&emb, &basis);
     let (emb, basis, mut ctx) = match &proxy {
@@ -532,8 +526,8 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
     // Proxy maps lifted to every vertex (concurrently; each is independent), then judged
     // again on the mesh: distortion on the samples, complexity of the mesh's functional map.
     let t_stage = Instant::now();
-    if let (Some(p), Some(adjacency)) = (&proxy, &fine_adjacency) {
-        let lifted = crate::parallel::map(&found, |f| p.lift(&mesh.vertices, adjacency, &f.dense));
+    if let Some(p) = &proxy {
+        let lifted = crate::parallel::map(&found, |f| p.lift(&mesh.vertices, &f.dense));
         for (f, dense) in found.iter_mut().zip(lifted) {
             f.dense = dense;
             f.seed = (p.seeds[f.seed.0], p.seeds[f.seed.1]);

@@ -248,8 +248,7 @@ pub(crate) fn row_major(m: faer::MatRef<'_, f64>, cols: usize) -> Vec<f64> {
 /// baseline SSE2), each lane doing what the scalar sum `t` does, so results are the same bits.
 #[inline]
 pub(crate) fn squared_distance(a: &[f64], b: &[f64]) -> f64 {
-    static ARCH: std::sync::OnceLock<pulp::Arch> = std::sync::OnceLock::new();
-    ARCH.get_or_init(pulp::Arch::new).dispatch(SquaredDistance { a, b })
+    crate::spectral::kernels::dispatch(SquaredDistance { a, b })
 }
 
 /// See [`squared_distance`].
@@ -258,10 +257,10 @@ struct SquaredDistance<'a> {
     b: &'a [f64],
 }
 
-impl pulp::WithSimd for SquaredDistance<'_> {
+impl crate::spectral::kernels::Kernel for SquaredDistance<'_> {
     type Output = f64;
     #[inline(always)]
-    fn with_simd<S: pulp::Simd>(self, simd: S) -> f64 {
+    fn run<S: pulp::Simd>(self, simd: S) -> f64 {
         let mut acc = [0.0f64; 8];
         let (ca, cb) = (self.a.chunks_exact(8), self.b.chunks_exact(8));
         let (ra, rb) = (ca.remainder(), cb.remainder());

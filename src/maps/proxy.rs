@@ -60,6 +60,8 @@ pub struct Proxy {
     pub positions: Vec<[f64; 3]>,
     /// CSR adjacency of the proxy graph (cells sharing a mesh edge).
     pub adjacency: (Vec<usize>, Vec<u32>),
+    /// CSR adjacency of the mesh (the lift descends on it).
+    pub mesh_adjacency: (Vec<usize>, Vec<u32>),
     /// The mesh's biharmonic embedding at the seeds.
     pub emb: BiharmonicEmbedding,
     /// `(m, E)` the mesh's wave kernel signatures at the seeds.
@@ -116,7 +118,7 @@ impl Proxy {
             info: basis.info.clone(),
             assembly_seconds: 0.0,
         };
-        Proxy { seeds, owner, positions, adjacency: (coff, cnbr), emb: sub_emb, wks: sub_wks, basis: sub_basis }
+        Proxy { seeds, owner, positions, adjacency: (coff, cnbr), mesh_adjacency: adjacency, emb: sub_emb, wks: sub_wks, basis: sub_basis }
     }
 
     /// Number of proxy vertices.
@@ -129,10 +131,11 @@ impl Proxy {
         self.seeds.is_empty()
     }
 
-    /// The map `m` of the proxy lifted to every mesh vertex (see the module docs):
-    /// `positions` and `adjacency` are the mesh's.
-    pub fn lift(&self, positions: &[[f64; 3]], adjacency: &(Vec<usize>, Vec<u32>), m: &DenseMap) -> DenseMap {
+    /// The map `m` of the proxy lifted to every mesh vertex (see the module docs): `positions`
+    /// are the mesh's.
+    pub fn lift(&self, positions: &[[f64; 3]], m: &DenseMap) -> DenseMap {
         let n = self.owner.len();
+        let adjacency = &self.mesh_adjacency;
         let (coff, cnbr) = &self.adjacency;
         let d = |a: &[f64; 3], b: &[f64; 3]| ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt();
         let mut image = vec![usize::MAX; n];
@@ -156,12 +159,8 @@ impl Proxy {
             let start = if cost(from_neighbour) < cost(own) { from_neighbour } else { own };
             image[u] = super::greedy_descent(adjacency, start, cost).0;
         });
-        // Vertices of components without a seed (none: every component gets one) keep themselves.
-        for (v, w) in image.iter_mut().enumerate() {
-            if *w == usize::MAX {
-                *w = v;
-            }
-        }
+        // Every component has a seed (`geodesic_farthest_points`), so every vertex is placed.
+        debug_assert!(image.iter().all(|&w| w != usize::MAX));
         let mut map = vec![-1i64; n];
         let mut confidence = vec![0.0; n];
         let mut mismatch = vec![0.0; n];
@@ -330,7 +329,7 @@ mod tests {
         let mut coarse = DenseMap::from_image(image.clone());
         // One cell outside the region.
         coarse.map[5] = -1;
-        let lifted = p.lift(&c.mesh.vertices, &c.mesh.adjacency(), &coarse);
+        let lifted = p.lift(&c.mesh.vertices, &coarse);
         // The proxy map is right to a cell; the lift must stay within that and beat the
         // piecewise-constant lift (every vertex to its cell's image seed).
         let x = &c.mesh.vertices;

@@ -43,9 +43,11 @@ impl<K: Kernel> pulp::WithSimd for Simd<K> {
     }
 }
 
-/// Runs `kernel` compiled for the best SIMD instruction set of this CPU.
+/// Runs `kernel` compiled for the best SIMD instruction set of this CPU (detected once: some
+/// kernels, like a descent's squared distance, are called millions of times).
 pub fn dispatch<K: Kernel>(kernel: K) -> K::Output {
-    pulp::Arch::new().dispatch(Simd(kernel))
+    static ARCH: std::sync::OnceLock<pulp::Arch> = std::sync::OnceLock::new();
+    ARCH.get_or_init(pulp::Arch::new).dispatch(Simd(kernel))
 }
 
 /// A row as SIMD vectors of `S` (two `f64x4` with AVX2).
