@@ -206,13 +206,25 @@ fn mismatch(profile: &[(usize, f64)], dst: &Mat<f64>, w: usize) -> f64 {
 /// Trimmed mismatch: the mean of the smallest `TRIM` fraction of `|d(v,a_i) − d(w,b_i)|`, robust
 /// to the wrong correspondences a voting candidate still contains (up to a third of them).
 fn robust_mismatch(profile: &[(usize, f64)], dst: &Mat<f64>, w: usize, scratch: &mut Vec<u64>) -> f64 {
-    const TRIM: f64 = 0.6;
-    // Non-negative floats order like their bit patterns: the selection is on integers.
     scratch.clear();
     scratch.extend(profile.iter().map(|&(i, p)| (p - dst[(w, i)]).abs().to_bits()));
-    let keep = ((TRIM * scratch.len() as f64).ceil() as usize).clamp(1, scratch.len());
-    scratch.select_nth_unstable(keep - 1);
-    scratch[..keep].iter().map(|&b| f64::from_bits(b)).sum::<f64>() / keep as f64
+    trimmed_mean(scratch)
+}
+
+/// Fraction of the differences the trimmed mismatch keeps ([`robust_mismatch`]).
+const TRIM: f64 = 0.6;
+
+/// Number of the `p` differences the trimmed mismatch keeps.
+fn trimmed_count(p: usize) -> usize {
+    ((TRIM * p as f64).ceil() as usize).clamp(1, p)
+}
+
+/// Mean of the smallest [`trimmed_count`] of non-negative floats given as bit patterns
+/// (they order like the floats: the selection is on integers); reorders `bits`.
+fn trimmed_mean(bits: &mut [u64]) -> f64 {
+    let keep = trimmed_count(bits.len());
+    bits.select_nth_unstable(keep - 1);
+    bits[..keep].iter().map(|&b| f64::from_bits(b)).sum::<f64>() / keep as f64
 }
 
 /// The `k` anchors nearest to a vertex among `candidates`, from its distance to each anchor
@@ -352,6 +364,92 @@ fn multi_start(ctx: &Context<'_>, mut cost: impl FnMut(usize) -> f64) -> usize {
 /// Descents per coarse search ([`multi_start`]).
 const STARTS: usize = 8;
 
+/// [`multi_start`] of the trimmed mismatch ([`robust_mismatch`]) of `profile` (the
+/// anchors `0..p` in order, as the first round of anchor refinement has them), with the same
+/// result: `rows` holds the target distances of the coarse subset row-major (`rows[r·p + i]
+/// = d(search[r], b_i)`, contiguous), and a vertex is only ranked exactly when a lower bound
+/// of its mismatch does not already exclude it from the best [`STARTS`].
+///
+/// The bound: the sum `S` of the smallest `q` of `p` differences `x_i ≥ 0` is the maximum
+/// over `t` of the concave `Σ_i min(x_i, t) − (p − q)·t` (attained at the `q`-th smallest),
+/// so every `t` bounds it from below, without a selection; `t = 2τ` and `4τ` (`τ` the current
+/// `STARTS`-th best mismatch) exclude nearly every vertex of the coarse subset. The selection
+/// this skips was the largest single cost of anchor refinement.
+fn robust_multi_start(ctx: &Context<'_>, profile: &[(usize, f64)], rows: &[f64], scratch: &mut Vec<u64>, mut cost: impl FnMut(usize) -> f64) -> usize {
+    let p = profile.len();
+    debug_assert!(profile.iter().enumerate().all(|(i, a)| a.0 == i) && rows.len() == ctx.search.len() * p);
+    if p == 0 || ctx.search.is_empty() {
+        return 0;
+    }
+    let source: Vec<f64> = profile.iter().map(|a| a.1).collect();
+    let mut best = Vec::with_capacity(STARTS + 1);
+    crate::spectral::kernels::dispatch(RobustScan { source: &source, rows, search: &ctx.search, best: &mut best, scratch });
+    best.iter().map(|&(_, w)| descend_by(ctx, w, &mut cost)).fold((0, f64::INFINITY), |b, c| if c.1 < b.1 { c } else { b }).0
+}
+
+/// The scan of [`robust_multi_start`]: the best [`STARTS`] `(mismatch, vertex)` of the coarse
+/// subset into `best`, in increasing order. The bound's sums run in explicit SIMD (eight
+/// partial sums: their rounding only moves the bound, which has a margin); the exact mismatch
+/// is [`trimmed_mean`] of the same differences as [`robust_mismatch`].
+struct RobustScan<'a> {
+    source: &'a [f64],
+    rows: &'a [f64],
+    search: &'a [usize],
+    best: &'a mut Vec<(f64, usize)>,
+    scratch: &'a mut Vec<u64>,
+}
+
+impl crate::spectral::kernels::Kernel for RobustScan<'_> {
+    type Output = ();
+    #[inline(always)]
+    fn run<S: pulp::Simd>(self, simd: S) {
+        let RobustScan { source, rows, search, best, scratch } = self;
+        let p = source.len();
+        let q = trimmed_count(p);
+        let (sv, stail) = (source.chunks_exact(8), source.chunks_exact(8).remainder());
+        for (row, &w) in rows.chunks_exact(p).zip(search) {
+            if best.len() == STARTS {
+                let tau = best[STARTS - 1].0;
+                let (t1, t2) = (2.0 * tau, 4.0 * tau);
+                let (mut a1, mut a2) = ([0.0f64; 8], [0.0f64; 8]);
+                {
+                    let (v1, _) = S::as_mut_simd_f64s(&mut a1);
+                    let (v2, _) = S::as_mut_simd_f64s(&mut a2);
+                    let (t1v, t2v) = (simd.splat_f64s(t1), simd.splat_f64s(t2));
+                    for (x, y) in sv.clone().zip(row.chunks_exact(8)) {
+                        // Vectors of 1, 2, 4 or 8 lanes split a chunk of 8 exactly.
+                        let ((xv, _), (yv, _)) = (S::as_simd_f64s(x), S::as_simd_f64s(y));
+                        for (((a1, a2), &x), &y) in v1.iter_mut().zip(v2.iter_mut()).zip(xv).zip(yv) {
+                            let d = simd.abs_f64s(simd.sub_f64s(x, y));
+                            *a1 = simd.add_f64s(*a1, simd.min_f64s(d, t1v));
+                            *a2 = simd.add_f64s(*a2, simd.min_f64s(d, t2v));
+                        }
+                    }
+                }
+                let (mut s1, mut s2) = (a1.iter().sum::<f64>(), a2.iter().sum::<f64>());
+                for (x, y) in stail.iter().zip(&row[p - stail.len()..]) {
+                    let d = (x - y).abs();
+                    s1 += d.min(t1);
+                    s2 += d.min(t2);
+                }
+                // `S ≥ q·τ` means a mismatch ≥ τ: not among the best (with a margin for rounding).
+                let lower = (s1 - (p - q) as f64 * t1).max(s2 - (p - q) as f64 * t2);
+                if lower >= q as f64 * tau * (1.0 + 1e-9) {
+                    continue;
+                }
+            }
+            scratch.clear();
+            scratch.extend(source.iter().zip(row).map(|(x, y)| (x - y).abs().to_bits()));
+            let c = trimmed_mean(scratch);
+            if best.len() < STARTS || c < best[STARTS - 1].0 {
+                let at = best.partition_point(|b| b.0 <= c);
+                best.insert(at, (c, w));
+                best.truncate(STARTS);
+            }
+        }
+    }
+}
+
 /// Greedy descent of the mismatch on the mesh graph from `start`.
 fn descend(ctx: &Context<'_>, profile: &[(usize, f64)], dst: &Mat<f64>, start: usize) -> (usize, f64) {
     descend_by(ctx, start, |w| mismatch(profile, dst, w))
@@ -480,6 +578,10 @@ fn profile_images(
         let mut used = std::collections::HashSet::new();
         let mut profile = Vec::new();
         let mut scratch = Vec::new();
+        let mut search_scratch = Vec::new();
+        // The first round's coarse searches read the target distances of the coarse subset,
+        // contiguous per vertex (see `robust_multi_start`).
+        let search_rows: Vec<f64> = if round == 0 { ctx.search.iter().flat_map(|&w| (0..dst_v.len()).map(move |i| (w, i))).map(|(w, i)| dst[(w, i)]).collect() } else { Vec::new() };
         for (si, &x) in samples.iter().enumerate() {
             // The first round matches on all anchors with a trimmed mean (the candidate's pairs
             // are coarse and partly wrong); later rounds on the nearest anchors.
@@ -491,6 +593,7 @@ fn profile_images(
             // or the candidate's own target if x is an anchor and that fits better.
             let mut start = match previous[si] {
                 Some(w) => w,
+                None if robust => robust_multi_start(ctx, &profile, &search_rows, &mut search_scratch, &mut cost),
                 None => multi_start(ctx, &mut cost),
             };
             if let Some(&(_, t)) = anchors.iter().find(|a| a.0 == x) {
@@ -613,4 +716,53 @@ pub fn functional_map(basis: &Eigenbasis, map: &[i64], k_f: usize) -> Mat<f64> {
     let mut c = Mat::<f64>::zeros(k_f, k_f);
     faer::linalg::matmul::matmul(c.as_mut(), faer::Accum::Replace, a.transpose(), b.as_ref(), 1.0, faer::Par::Seq);
     c
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::descriptors::{wks, WksParams};
+    use crate::distance::biharmonic;
+    use crate::shapes::{self, Pose};
+    use crate::spectral::EigenParams;
+
+    /// The pruned coarse search of the trimmed mismatch ranks exactly as the exhaustive one:
+    /// on a posed quadruped, for true mirror anchors with a third of them scrambled (as a
+    /// voting candidate's), both return the same vertex for every sample; and the bound is
+    /// below the trimmed sum for every `t`, equal to it at the `q`-th smallest difference.
+    #[test]
+    fn pruned_robust_search_is_the_exhaustive_one() {
+        let c = shapes::quadruped(4, Pose::Walking, 0.0, 0);
+        let basis = Eigenbasis::compute(&c.mesh, &EigenParams { k: 30, ..Default::default() }).unwrap();
+        let emb = biharmonic(&basis);
+        let desc = wks(&basis, &WksParams::default());
+        let diameter = (0..c.mesh.num_vertices()).step_by(7).map(|v| emb.dist(0, v)).fold(0.0, f64::max);
+        let ctx = Context::new(&c.mesh, &emb, &desc, diameter, &MapParams::default());
+        let n = c.mesh.num_vertices();
+        let samples: Vec<usize> = (0..n).step_by(n / 40).collect();
+        let anchors: Vec<(usize, usize)> = samples.iter().enumerate().map(|(i, &s)| (s, if i % 3 == 0 { samples[(i * 7) % samples.len()] } else { c.mirror[s] as usize })).collect();
+        let dst_v: Vec<usize> = anchors.iter().map(|a| a.1).collect();
+        let src: Vec<usize> = anchors.iter().map(|a| a.0).collect();
+        let dst = emb.from_sources(&dst_v);
+        let sd = emb.between(&samples, &src);
+        let rows: Vec<f64> = ctx.search.iter().flat_map(|&w| (0..dst_v.len()).map(move |i| (w, i))).map(|(w, i)| dst[(w, i)]).collect();
+        let (mut scratch, mut scratch2, mut profile) = (Vec::new(), Vec::new(), Vec::new());
+        for si in 0..samples.len() {
+            nearest_profile(|i| sd[(si, i)], 0..src.len(), src.len(), &mut profile);
+            let exhaustive = multi_start(&ctx, |w| robust_mismatch(&profile, &dst, w, &mut scratch));
+            let pruned = robust_multi_start(&ctx, &profile, &rows, &mut scratch2, |w| robust_mismatch(&profile, &dst, w, &mut scratch));
+            assert_eq!(pruned, exhaustive, "sample {si}");
+        }
+        // The bound is a lower bound of the trimmed mismatch for any t, tight at the q-th value.
+        let x = [0.3, 0.1, 0.7, 0.2, 0.9, 0.05];
+        let q = trimmed_count(x.len());
+        let mut bits: Vec<u64> = x.iter().map(|v: &f64| v.to_bits()).collect();
+        let exact = trimmed_mean(&mut bits) * q as f64;
+        for t in [0.0, 0.1, 0.25, 0.3, 0.5, 2.0] {
+            let bound = x.iter().map(|v: &f64| v.min(t)).sum::<f64>() - (x.len() - q) as f64 * t;
+            assert!(bound <= exact + 1e-15, "t = {t}");
+        }
+        let tight = x.iter().map(|v: &f64| v.min(0.3)).sum::<f64>() - (x.len() - q) as f64 * 0.3;
+        assert!((tight - exact).abs() < 1e-15);
+    }
 }
