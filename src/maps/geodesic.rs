@@ -57,7 +57,13 @@ pub struct EdgeGraph {
     pub(crate) off: Vec<usize>,
     pub(crate) nbr: Vec<u32>,
     pub(crate) len: Vec<f64>,
+    /// Width and number of the circular buckets of [`EdgeGraph::distances`] (`None`: a heap).
+    buckets: Option<(f64, usize)>,
 }
+
+/// Most circular buckets of a search (a mesh whose longest edge is more than about this many
+/// times its shortest is searched with a heap).
+const MAX_BUCKETS: usize = 4096;
 
 impl EdgeGraph {
     /// The graph of vertices at `positions` with CSR `adjacency` ([`crate::Mesh::adjacency`]);
@@ -72,17 +78,76 @@ impl EdgeGraph {
                 len.push(((p[v][0] - q[0]).powi(2) + (p[v][1] - q[1]).powi(2) + (p[v][2] - q[2]).powi(2)).sqrt());
             }
         }
-        EdgeGraph { off, nbr, len }
+        let (min, max) = len.iter().fold((f64::INFINITY, 0.0f64), |(a, b), &l| (a.min(l), b.max(l)));
+        // Buckets narrower than the shortest edge (with a margin for rounding), enough of them
+        // to hold every distance up to one longest edge ahead.
+        let width = min * (1.0 - 1e-6);
+        let buckets = (width > 0.0 && (max / width).is_finite() && max / width < MAX_BUCKETS as f64).then(|| (width, (max / width).ceil() as usize + 2));
+        EdgeGraph { off, nbr, len, buckets }
     }
 
     /// Dijkstra distances from `src` to every vertex.
+    ///
+    /// A bucket queue (Dial's algorithm) when the edge lengths allow: with buckets of width
+    /// `w` no longer than the shortest edge, relaxing a vertex of bucket `b` only reaches
+    /// buckets after `b`, so every vertex of the current bucket has its final distance, in
+    /// any order: no heap, and the distances are those of the heap's Dijkstra to the bit
+    /// (each is the minimum of the same sums `d(u) + |uv|` over settled neighbours). On the
+    /// 5k-vertex TOSCA meshes (longest edge 30–370 times the shortest) it halves a search.
     pub fn distances(&self, src: usize) -> Vec<f64> {
+        match self.buckets {
+            Some((width, count)) => self.distances_buckets(src, width, count),
+            None => self.distances_heap(src),
+        }
+    }
+
+    fn distances_buckets(&self, src: usize, width: f64, count: usize) -> Vec<f64> {
+        let n = self.off.len() - 1;
+        let mut d = vec![f64::INFINITY; n];
+        let mut settled = vec![false; n];
+        let mut buckets: Vec<Vec<u32>> = vec![Vec::new(); count];
+        let inv = 1.0 / width;
+        d[src] = 0.0;
+        buckets[0].push(src as u32);
+        let mut pending = 1usize;
+        let mut current = 0usize;
+        while pending > 0 {
+            let slot = current % count;
+            let list = std::mem::take(&mut buckets[slot]);
+            pending -= list.len();
+            for &v in &list {
+                let v = v as usize;
+                if std::mem::replace(&mut settled[v], true) {
+                    continue;
+                }
+                let dv = d[v];
+                for e in self.off[v]..self.off[v + 1] {
+                    let u = self.nbr[e] as usize;
+                    let nd = dv + self.len[e];
+                    if nd < d[u] {
+                        d[u] = nd;
+                        let b = (nd * inv) as usize;
+                        debug_assert!(b > current && b < current + count);
+                        buckets[b % count].push(u as u32);
+                        pending += 1;
+                    }
+                }
+            }
+            // The emptied list keeps its allocation for a later turn of the circle.
+            let mut list = list;
+            list.clear();
+            buckets[slot] = list;
+            current += 1;
+        }
+        d
+    }
+
+    fn distances_heap(&self, src: usize) -> Vec<f64> {
         let n = self.off.len() - 1;
         let mut d = vec![f64::INFINITY; n];
         let mut heap = BinaryHeap::new();
         d[src] = 0.0;
-        // Non-negative f64s order like their bit patterns. (A radix heap was tried: no faster
-        // on these meshes.)
+        // Non-negative f64s order like their bit patterns.
         heap.push(Reverse((0u64, src as u32)));
         while let Some(Reverse((key, v))) = heap.pop() {
             let (dv, v) = (f64::from_bits(key), v as usize);
@@ -400,6 +465,24 @@ mod tests {
         for v in [5usize, 100, 400] {
             assert!((g.distances(v)[0] - d0[v]).abs() < 1e-12);
         }
+    }
+
+    /// The bucket queue gives the heap's distances to the bit, on a noisy, posed quadruped
+    /// (uneven edges) from several sources; a mesh with a near-zero edge uses the heap.
+    #[test]
+    fn bucket_search_is_the_heap_search() {
+        let c = shapes::quadruped(4, Pose::Walking, 0.005, 3);
+        let g = EdgeGraph::new(&c.mesh.vertices, c.mesh.adjacency());
+        assert!(g.buckets.is_some());
+        for src in [0usize, 17, 1000, 2561] {
+            let (a, b) = (g.distances(src), g.distances_heap(src));
+            assert!(a.iter().zip(&b).all(|(x, y)| x.to_bits() == y.to_bits()), "source {src}");
+        }
+        let mut p = c.mesh.vertices.clone();
+        let (off, nbr) = c.mesh.adjacency();
+        let u = nbr[off[0]] as usize;
+        p[u] = [p[0][0] + 1e-9, p[0][1], p[0][2]];
+        assert!(EdgeGraph::new(&p, (off, nbr)).buckets.is_none());
     }
 
     /// A map that is right except on one leg, which it maps to itself, is repaired: the leg's
