@@ -1,8 +1,9 @@
 //! Detection benchmark: the whole pipeline at 2.5k–80k vertices, with per-stage times and the
 //! accuracy of the best symmetry, as a Markdown table.
 //!
-//! `cargo run --release --example bench_detect [DATA_DIR] [RUNS]` (default `../shared/data`,
-//! 3 runs; the table shows the median run by total time). Shapes: the generated posed
+//! `cargo run --release --example bench_detect [DATA_DIR] [RUNS] [tosca]` (default
+//! `../shared/data`, 3 runs; the table shows the median run by total time; `tosca`: only the
+//! TOSCA row). Shapes: the generated posed
 //! quadruped at icosphere levels 4–6 (2.5k, 10k, 41k vertices) with its exact mirror; every
 //! TOSCA shape of DATA_DIR (≈5k) as one summary row; and, scaled up by flat midpoint
 //! subdivision ([`shapes::subdivide`], the same surface), TOSCA david0 ×1 and ×2 (20k, 80k) and
@@ -92,6 +93,8 @@ fn main() {
     let args: Vec<String> = std::env::args().collect();
     let data = PathBuf::from(args.get(1).map_or("../shared/data", String::as_str));
     let runs: usize = args.get(2).and_then(|r| r.parse().ok()).unwrap_or(3);
+    // `tosca` as a third argument: the TOSCA row only (quick comparisons at 5k).
+    let only_tosca = args.get(3).is_some_and(|a| a == "tosca");
     println!("| shape | vertices | eigenbasis | WKS + distance + sampling | voting | proxy | profile | refine | polish | compose + lift | characterize | **total** | acc@0.05 |");
     println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|");
     let creature = |level: u32| {
@@ -99,8 +102,10 @@ fn main() {
         let truth: Truth = (0..c.mesh.num_vertices()).map(|v| (v, vec![c.mirror[v] as usize])).collect();
         (c.mesh, truth)
     };
-    let (m, t) = creature(4);
-    row("quadruped, posed (level 4)", m.num_vertices(), &bench(&m, &t, runs));
+    if !only_tosca {
+        let (m, t) = creature(4);
+        row("quadruped, posed (level 4)", m.num_vertices(), &bench(&m, &t, runs));
+    }
 
     // TOSCA: one summary row (mean and range of the medians).
     let mut tosca: Vec<(String, usize, Run)> = Vec::new();
@@ -138,6 +143,9 @@ fn main() {
             mean,
             100.0 * acc
         );
+    }
+    if only_tosca {
+        return;
     }
     let (m, t) = creature(5);
     row("quadruped, posed (level 5)", m.num_vertices(), &bench(&m, &t, runs));
