@@ -122,7 +122,7 @@ pub fn vote(
     }
     all.sort_by(|a, b| a.total_cmp(b));
     let t_wks = if all.is_empty() { 0.0 } else { all[((params.wks_quantile * all.len() as f64) as usize).min(all.len() - 1)] };
-    // Directed good pairs; self-pairs are appended (they join, never seed).
+    // Directed good pairs, without self-pairs (see the module docs).
     let mut pairs: Vec<(usize, usize)> = Vec::new();
     for i in 0..ns {
         for j in 0..ns {
@@ -157,6 +157,12 @@ pub fn vote(
     let mut order: Vec<usize> = (0..good_pairs).collect();
     order.sort_by(|&a, &b| votes[b].cmp(&votes[a]).then(wd[(pairs[a].0, pairs[a].1)].total_cmp(&wd[(pairs[b].0, pairs[b].1)])));
 
+    // The good pairs by source and by target (growth marks out the pairs of a used sample).
+    let (mut by_source, mut by_target) = (vec![Vec::new(); ns], vec![Vec::new(); ns]);
+    for (r, &(x, y)) in pairs.iter().enumerate() {
+        by_source[x].push(r as u32);
+        by_target[y].push(r as u32);
+    }
     // Each seed grows independently: seeds are grown on all cores, collected in seed order.
     let max_seeds = 2 * ns;
     let seeds: Vec<usize> = order.iter().copied().take(max_seeds).take_while(|&pi| votes[pi] > 0).collect();
@@ -190,9 +196,9 @@ pub fn vote(
                     if !involutive.get(pi, qi) {
                         continue;
                     }
-                    grow(&pairs, vec![pi, qi], &involutive, params.consistency, ns)
+                    grow(&pairs, vec![pi, qi], &involutive, params.consistency, &by_source, &by_target)
                 } else {
-                    grow(&pairs, vec![pi, qi], &general, params.consistency, ns)
+                    grow(&pairs, vec![pi, qi], &general, params.consistency, &by_source, &by_target)
                 };
                 if members.len() >= params.min_pairs {
                     let mut sorted = members;
@@ -235,7 +241,7 @@ impl BitRows {
     }
 
     /// Adds 1 to `count[b]` for every `b` related to `a`.
-    fn add_row(&self, a: usize, count: &mut [usize]) {
+    fn add_row(&self, a: usize, count: &mut [i32]) {
         for (w, &word) in self.bits[a * self.words..(a + 1) * self.words].iter().enumerate() {
             let mut x = word;
             while x != 0 {
@@ -247,38 +253,37 @@ impl BitRows {
 }
 
 /// Greedy growth of an injective set of mutually consistent directed pairs (indices into
-/// `pairs`; `consistent` relates them).
-fn grow(pairs: &[(usize, usize)], mut members: Vec<usize>, consistent: &BitRows, fraction: f64, ns: usize) -> Vec<(usize, usize)> {
-    let mut src_used = vec![false; ns];
-    let mut dst_used = vec![false; ns];
-    // count[r] = members consistent with pair r.
-    let mut count = vec![0usize; pairs.len()];
+/// `pairs`; `consistent` relates them): the pair consistent with the most members (the first
+/// such pair on ties) joins while it is consistent with at least `fraction` of them.
+/// `by_source[x]` and `by_target[x]` list the pairs with source or target `x`: a member's
+/// source and target are used, so those pairs are marked out (their count goes far below zero,
+/// where additions cannot bring it back) and the choice is a plain first-maximum scan.
+fn grow(pairs: &[(usize, usize)], mut members: Vec<usize>, consistent: &BitRows, fraction: f64, by_source: &[Vec<u32>], by_target: &[Vec<u32>]) -> Vec<(usize, usize)> {
+    const OUT: i32 = i32::MIN / 2;
+    // count[r] = members consistent with pair r (OUT and below: r is out).
+    let mut count = vec![0i32; pairs.len()];
+    let join = |m: usize, count: &mut [i32]| {
+        consistent.add_row(m, count);
+        for &r in by_source[pairs[m].0].iter().chain(&by_target[pairs[m].1]) {
+            count[r as usize] = OUT;
+        }
+    };
     for &m in &members {
-        src_used[pairs[m].0] = true;
-        dst_used[pairs[m].1] = true;
-        consistent.add_row(m, &mut count);
+        join(m, &mut count);
     }
     loop {
-        let need = ((fraction * members.len() as f64).ceil() as usize).max(2);
-        let mut best: Option<usize> = None;
-        for (ri, &r) in pairs.iter().enumerate() {
-            if src_used[r.0] || dst_used[r.1] || count[ri] < need {
-                continue;
-            }
-            // Prefer more consistent; prefer non-self pairs on ties (they carry more information).
-            let better = match best {
-                None => true,
-                Some(b) => count[ri] > count[b] || (count[ri] == count[b] && pairs[b].0 == pairs[b].1 && r.0 != r.1),
-            };
-            if better {
-                best = Some(ri);
+        let need = ((fraction * members.len() as f64).ceil() as i32).max(2);
+        let (mut bi, mut bc) = (0usize, OUT);
+        for (ri, &c) in count.iter().enumerate() {
+            if c > bc {
+                (bi, bc) = (ri, c);
             }
         }
-        let Some(bi) = best else { break };
+        if bc < need {
+            break;
+        }
         members.push(bi);
-        src_used[pairs[bi].0] = true;
-        dst_used[pairs[bi].1] = true;
-        consistent.add_row(bi, &mut count);
+        join(bi, &mut count);
     }
     members.into_iter().map(|m| pairs[m]).collect()
 }
