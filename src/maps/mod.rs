@@ -574,15 +574,15 @@ fn profile_images(
         let dst_v: Vec<usize> = anchors.iter().map(|a| a.1).collect();
         let dst = ctx.emb.from_sources(&dst_v);
         let sd = ctx.emb.between(samples, &src);
-        let mut next = Vec::new();
-        let mut used = std::collections::HashSet::new();
-        let mut profile = Vec::new();
-        let mut scratch = Vec::new();
-        let mut search_scratch = Vec::new();
         // The first round's coarse searches read the target distances of the coarse subset,
         // contiguous per vertex (see `robust_multi_start`).
         let search_rows: Vec<f64> = if round == 0 { ctx.search.iter().flat_map(|&w| (0..dst_v.len()).map(move |i| (w, i))).map(|(w, i)| dst[(w, i)]).collect() } else { Vec::new() };
-        for (si, &x) in samples.iter().enumerate() {
+        // Each sample's match is independent (on all cores); the anchors are then taken in
+        // sample order, each image used once.
+        let indices: Vec<usize> = (0..samples.len()).collect();
+        let matched: Vec<(usize, f64)> = crate::parallel::map(&indices, |&si| {
+            let x = samples[si];
+            let (mut profile, mut scratch, mut search_scratch) = (Vec::new(), Vec::new(), Vec::new());
             // The first round matches on all anchors with a trimmed mean (the candidate's pairs
             // are coarse and partly wrong); later rounds on the nearest anchors.
             let robust = round == 0;
@@ -601,7 +601,11 @@ fn profile_images(
                     start = t;
                 }
             }
-            let (w, c) = descend_by(ctx, start, &mut cost);
+            descend_by(ctx, start, &mut cost)
+        });
+        let mut next = Vec::new();
+        let mut used = std::collections::HashSet::new();
+        for ((si, &x), (w, c)) in samples.iter().enumerate().zip(matched) {
             previous[si] = Some(w);
             if c <= round_tol && ctx.wks_distance(x, w) <= params.wks_accept && used.insert(w) {
                 next.push((x, w));
@@ -616,8 +620,21 @@ fn profile_images(
     // Dense map.
     let src: Vec<usize> = anchors.iter().map(|a| a.0).collect();
     let dst_v: Vec<usize> = anchors.iter().map(|a| a.1).collect();
-    let dsrc = ctx.emb.from_sources(&src);
-    let ddst = ctx.emb.from_sources(&dst_v);
+    let (dsrc, ddst) = crate::parallel::join(|| ctx.emb.from_sources(&src), || ctx.emb.from_sources(&dst_v));
+    // Every vertex's profile (its nearest anchors), on all cores; the descents below are
+    // sequential (each starts from its mapped neighbours' images).
+    let k = params.local_anchors.min(src.len());
+    let profiles: Vec<(usize, f64)> = crate::parallel::chunks(n, |range| {
+        let mut profile = Vec::new();
+        let mut out = Vec::with_capacity(range.len() * k);
+        for v in range {
+            nearest_profile(|i| dsrc[(v, i)], 0..src.len(), params.local_anchors, &mut profile);
+            debug_assert_eq!(profile.len(), k);
+            out.extend_from_slice(&profile);
+        }
+        out
+    })
+    .concat();
     let mut best = vec![usize::MAX; n];
     // Breadth-first from the anchor sources so that neighbours' images are good starts.
     let mut queue = std::collections::VecDeque::new();
@@ -628,22 +645,21 @@ fn profile_images(
             queue.push_back(a);
         }
     }
-    let mut profile = Vec::new();
     while let Some(v) = queue.pop_front() {
-        nearest_profile(|i| dsrc[(v, i)], 0..src.len(), params.local_anchors, &mut profile);
+        let profile = &profiles[v * k..(v + 1) * k];
         let nearest = profile.iter().fold(profile[0], |b, &p| if p.1 < b.1 { p } else { b }).0;
         let mut start = dst_v[nearest];
-        let mut start_c = mismatch(&profile, &ddst, start);
+        let mut start_c = mismatch(profile, &ddst, start);
         for &u in ctx.neighbours(v) {
             let b = best[u as usize];
             if b != usize::MAX {
-                let c = mismatch(&profile, &ddst, b);
+                let c = mismatch(profile, &ddst, b);
                 if c < start_c {
                     (start, start_c) = (b, c);
                 }
             }
         }
-        best[v] = descend(ctx, &profile, &ddst, start).0;
+        best[v] = descend(ctx, profile, &ddst, start).0;
         for &u in ctx.neighbours(v) {
             if !seen[u as usize] {
                 seen[u as usize] = true;
@@ -661,15 +677,17 @@ fn finish(ctx: &Context<'_>, anchors: Vec<(usize, usize)>, image: Vec<usize>, pa
     let tol = params.accept * ctx.diameter;
     let src: Vec<usize> = anchors.iter().map(|a| a.0).collect();
     let dst_v: Vec<usize> = anchors.iter().map(|a| a.1).collect();
-    let dsrc = ctx.emb.from_sources(&src);
-    let ddst = ctx.emb.from_sources(&dst_v);
-    let mut profile = Vec::new();
-    let mismatch_of: Vec<f64> = (0..n)
-        .map(|v| {
-            nearest_profile(|i| dsrc[(v, i)], 0..src.len(), params.local_anchors, &mut profile);
-            mismatch(&profile, &ddst, image[v])
-        })
-        .collect();
+    let (dsrc, ddst) = crate::parallel::join(|| ctx.emb.from_sources(&src), || ctx.emb.from_sources(&dst_v));
+    let mismatch_of: Vec<f64> = crate::parallel::chunks(n, |range| {
+        let mut profile = Vec::new();
+        range
+            .map(|v| {
+                nearest_profile(|i| dsrc[(v, i)], 0..src.len(), params.local_anchors, &mut profile);
+                mismatch(&profile, &ddst, image[v])
+            })
+            .collect::<Vec<f64>>()
+    })
+    .concat();
     let in_region = |v: usize| mismatch_of[v] <= tol && ctx.wks_distance(v, image[v]) <= params.wks_accept;
     let inside: Vec<bool> = (0..n).map(in_region).collect();
     let global = inside.iter().filter(|&&x| x).count() as f64 >= params.global_fraction * n as f64;

@@ -45,15 +45,15 @@ pub fn zoomout(basis: &Eigenbasis, adjacency: &(Vec<usize>, Vec<u32>), map: &mut
     // target of vs[r], contiguous for the descent. Column v of the row-major Φ read as a
     // `(kmax, n)` column-major matrix is Φ(v): all vertices need no copy.
     let all_phi = MatRef::from_column_major_slice_with_stride(&rows, kmax, n, kmax);
-    let targets = |vs: Option<&[usize]>, c: &Mat<f64>| -> Mat<f64> {
+    let targets = |vs: Result<&[usize], std::ops::Range<usize>>, c: &Mat<f64>| -> Mat<f64> {
         let k = c.nrows();
         let gathered;
         let phi = match vs {
-            Some(vs) => {
+            Ok(vs) => {
                 gathered = Mat::<f64>::from_fn(k, vs.len(), |p, r| rows[vs[r] * kmax + p]);
                 gathered.as_ref()
             }
-            None => all_phi.subrows(0, k),
+            Err(range) => all_phi.subrows(0, k).subcols(range.start, range.len()),
         };
         let mut t = Mat::<f64>::zeros(k, phi.ncols());
         faer::linalg::matmul::matmul(t.as_mut(), Accum::Replace, c.transpose(), phi, 1.0, Par::Seq);
@@ -71,14 +71,18 @@ pub fn zoomout(basis: &Eigenbasis, adjacency: &(Vec<usize>, Vec<u32>), map: &mut
         let phit = MatRef::from_row_major_slice(&gather[..sub.len() * k], sub.len(), k);
         let mut c = Mat::<f64>::zeros(k, k);
         faer::linalg::matmul::matmul(c.as_mut(), Accum::Replace, mphi.as_ref().subcols(0, k).transpose(), phit, 1.0, Par::Seq);
-        let t = targets((!whole).then_some(&sub[..]), &c);
-        for (r, &v) in sub.iter().enumerate() {
-            let target = t.col_as_slice(r);
-            map[v] = super::greedy_descent(adjacency, map[v], |u| dist(u, target)).0;
+        // The subset's vertices move independently: a range of them per core, each with its
+        // own targets (a column of the product is the same alone or among others).
+        let moved = crate::parallel::chunks(sub.len(), |range| {
+            let t = if whole { targets(Err(range.clone()), &c) } else { targets(Ok(&sub[range.clone()]), &c) };
+            range.enumerate().map(|(i, r)| super::greedy_descent(adjacency, map[sub[r]], |u| dist(u, t.col_as_slice(i))).0).collect::<Vec<usize>>()
+        });
+        for (&v, w) in sub.iter().zip(moved.into_iter().flatten()) {
+            map[v] = w;
         }
         if k >= kmax && sub.len() < n {
             // Last iteration on a large mesh: every other vertex, breadth-first from the subset.
-            let t = targets(None, &c);
+            let t = targets(Err(0..n), &c);
             super::breadth_first(adjacency, &sub, |v, u| {
                 let target = t.col_as_slice(u);
                 let start = if dist(map[v], target) < dist(map[u], target) { map[v] } else { map[u] };
