@@ -318,18 +318,22 @@ pub fn polish(ctx: &Context<'_>, geodesics: &Geodesics, m: &DenseMap, samples: &
     }
     // The other samples, matched again against the trusted anchors.
     let mut dst = dst0.clone();
-    let mut profile = Vec::new();
     let mut is_trusted = vec![false; s];
     for &i in &trusted {
         is_trusted[i] = true;
     }
     let mut anchors: Vec<usize> = trusted.clone();
     let first = Pairs { ga: &ga, gb: &gb0, src: &src, dst: &dst0, s, doubled: false };
-    for i in (0..s).filter(|&i| !is_trusted[i]) {
+    // Independent searches, on all cores.
+    let untrusted: Vec<usize> = (0..s).filter(|&i| !is_trusted[i]).collect();
+    let rematched = crate::parallel::map(&untrusted, |&i| {
+        let mut profile = Vec::new();
         super::nearest_profile(|j| first.from_source(src[i], j), trusted.iter().copied(), k, &mut profile);
         let c = |w: usize| first.cost(&profile, w);
         let w = super::multi_start(ctx, c);
-        let (w, cw) = super::descend_by(ctx, w, c);
+        super::descend_by(ctx, w, c)
+    });
+    for (&i, (w, cw)) in untrusted.iter().zip(rematched) {
         if cw <= tol {
             dst[i] = w;
             anchors.push(i);
@@ -366,14 +370,27 @@ pub fn polish(ctx: &Context<'_>, geodesics: &Geodesics, m: &DenseMap, samples: &
     let profile_of = |v: usize, profile: &mut Vec<(usize, f64)>| {
         super::nearest_profile(|j| pairs.from_source(v, j), anchors.iter().copied().filter(|&j| pairs.pair(j).0 != v), k, profile);
     };
-    // Each vertex's profile, kept for judging the smoothed map below (the anchors do not change).
-    let mut profiles: Vec<(usize, f64)> = vec![(0, 0.0); n * k];
-    let mut profile_len = vec![0usize; n];
+    // Each vertex's profile, on all cores (the descents below are sequential: each starts from
+    // its mapped neighbours' images), kept for judging the smoothed map (the anchors do not
+    // change). A vertex has `profile_len[v] ≤ k` entries at `profiles[v·k..]`.
+    let chunks = crate::parallel::chunks(n, |range| {
+        let mut profile = Vec::new();
+        let (mut out, mut lens) = (vec![(0usize, 0.0f64); range.len() * k], Vec::with_capacity(range.len()));
+        for (i, v) in range.enumerate() {
+            profile_of(v, &mut profile);
+            out[i * k..i * k + profile.len()].copy_from_slice(&profile);
+            lens.push(profile.len());
+        }
+        (out, lens)
+    });
+    let (mut profiles, mut profile_len) = (Vec::with_capacity(n * k), Vec::with_capacity(n));
+    for (out, lens) in chunks {
+        profiles.extend(out);
+        profile_len.extend(lens);
+    }
     while let Some(v) = queue.pop_front() {
-        profile_of(v, &mut profile);
-        profiles[v * k..v * k + profile.len()].copy_from_slice(&profile);
-        profile_len[v] = profile.len();
-        let c = |w: usize| pairs.cost(&profile, w);
+        let profile = &profiles[v * k..v * k + profile_len[v]];
+        let c = |w: usize| pairs.cost(profile, w);
         let near = profile.iter().fold(profile[0], |b, &p| if p.1 < b.1 { p } else { b }).0;
         let mut start = (image[v], c(image[v]));
         let near_image = pairs.pair(near).1;
@@ -415,9 +432,9 @@ pub fn polish(ctx: &Context<'_>, geodesics: &Geodesics, m: &DenseMap, samples: &
     if let (true, Some(basis)) = (global && params.zoomout_k > 0, ctx.basis) {
         let kf = params.zoomout_k.min(basis.k());
         super::zoomout(basis, &ctx.adjacency, &mut image, kf, kf, params.zoomout_step);
-        for v in (0..n).filter(|&v| done[v]) {
-            mismatch[v] = pairs.cost(&profiles[v * k..v * k + profile_len[v]], image[v]);
-        }
+        let image = &image;
+        let smoothed = crate::parallel::chunks(n, |range| range.map(|v| if done[v] { pairs.cost(&profiles[v * k..v * k + profile_len[v]], image[v]) } else { mismatch[v] }).collect::<Vec<f64>>());
+        mismatch = smoothed.concat();
         inside = inside_of(&image, &mismatch);
     }
     // Vertices the search did not reach (other components) keep their image.
