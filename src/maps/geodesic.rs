@@ -429,9 +429,9 @@ pub fn polish(ctx: &Context<'_>, geodesics: &Geodesics, m: &DenseMap, samples: &
     //    map on the first k eigenfunctions, C = (MΦ)ᵀΦ[T], and back). Geodesic matching is
     //    vertex-wise, so it leaves small incoherent shifts at extremities; the band-limited map
     //    is smooth there. Then mismatch, region and confidence are judged on the smoothed map.
-    if let (true, Some(basis)) = (global && params.zoomout_k > 0, ctx.basis) {
-        let kf = params.zoomout_k.min(basis.k());
-        super::zoomout(basis, &ctx.adjacency, &mut image, kf, kf, params.zoomout_step);
+    if let (true, Some(zb)) = (global && params.zoomout_k > 0, ctx.zoom()) {
+        let kf = params.zoomout_k.min(zb.size());
+        super::zoomout::zoomout_with(zb, &ctx.adjacency, &mut image, kf, kf, params.zoomout_step);
         let image = &image;
         let smoothed = crate::parallel::chunks(n, |range| range.map(|v| if done[v] { pairs.cost(&profiles[v * k..v * k + profile_len[v]], image[v]) } else { mismatch[v] }).collect::<Vec<f64>>());
         mismatch = smoothed.concat();

@@ -152,6 +152,9 @@ pub struct Context<'a> {
     pub energies: usize,
     /// The eigenbasis, for ZoomOut refinement (`None` disables it).
     pub basis: Option<&'a Eigenbasis>,
+    /// ZoomOut's data on `basis` up to `zoom_size` eigenfunctions, built on first use.
+    zoom: std::sync::OnceLock<zoomout::ZoomBasis>,
+    zoom_size: usize,
 }
 
 impl<'a> Context<'a> {
@@ -174,12 +177,19 @@ impl<'a> Context<'a> {
         let stride = (n / params.search_vertices.max(1)).max(1);
         let energies = wks.ncols();
         let rows = row_major(wks.as_ref(), energies);
-        Context { positions, emb, adjacency, diameter, search: (0..n).step_by(stride).collect(), wks: rows, energies, basis: None }
+        Context { positions, emb, adjacency, diameter, search: (0..n).step_by(stride).collect(), wks: rows, energies, basis: None, zoom: Default::default(), zoom_size: params.zoomout_k }
     }
 
     /// Number of vertices.
     pub fn num_vertices(&self) -> usize {
         self.positions.len()
+    }
+
+    /// ZoomOut's shared data on the basis (up to `zoomout_k` eigenfunctions), `None` without a
+    /// basis.
+    pub fn zoom(&self) -> Option<&zoomout::ZoomBasis> {
+        let basis = self.basis?;
+        Some(self.zoom.get_or_init(|| zoomout::ZoomBasis::new(basis, self.zoom_size.max(1))))
     }
 
     /// WKS distance between two vertices.
@@ -480,7 +490,7 @@ pub fn refinable(ctx: &Context<'_>, m: &DenseMap, params: &MapParams) -> bool {
 /// fixes anchors the candidate had wrong; on TOSCA's michael this turned a 72% map into a 92%
 /// global one). The better of the two (larger region) is returned.
 pub fn refine(ctx: &Context<'_>, m: &DenseMap, samples: &[usize], params: &MapParams) -> DenseMap {
-    let Some(basis) = ctx.basis else { return m.clone() };
+    let (Some(basis), Some(zb)) = (ctx.basis, ctx.zoom()) else { return m.clone() };
     // A refined map is judged against its own images of the samples (the candidate's anchors
     // may be partly wrong, and would shrink the region of a right map).
     let own = |image: Vec<usize>| {
@@ -501,7 +511,7 @@ pub fn refine(ctx: &Context<'_>, m: &DenseMap, samples: &[usize], params: &MapPa
     // The first start: the profile map itself.
     let first_start = || {
         let mut image = m.image.clone();
-        zoomout(basis, &ctx.adjacency, &mut image, 10, mid, params.zoomout_step);
+        zoomout::zoomout_with(zb, &ctx.adjacency, &mut image, 10, mid, params.zoomout_step);
         own(image)
     };
     // The second start: the low-frequency functional map fitted to the anchors (robust where a
@@ -509,7 +519,7 @@ pub fn refine(ctx: &Context<'_>, m: &DenseMap, samples: &[usize], params: &MapPa
     let second_start = || {
         let c0 = spectral_init::robust_fit(basis, &m.anchors, params.spectral_start);
         let mut image = spectral_init::point_map(basis, &ctx.adjacency, &c0, &ctx.search);
-        zoomout(basis, &ctx.adjacency, &mut image, params.spectral_start, mid, params.zoomout_step);
+        zoomout::zoomout_with(zb, &ctx.adjacency, &mut image, params.spectral_start, mid, params.zoomout_step);
         own(image)
     };
     let (mut start, other) = if params.spectral_start > 0 {
@@ -527,7 +537,7 @@ pub fn refine(ctx: &Context<'_>, m: &DenseMap, samples: &[usize], params: &MapPa
         return m.clone();
     }
     let mut image = start.image;
-    zoomout(basis, &ctx.adjacency, &mut image, mid, params.zoomout_k, params.zoomout_step);
+    zoomout::zoomout_with(zb, &ctx.adjacency, &mut image, mid, params.zoomout_k, params.zoomout_step);
     let mut best = own(image);
     if !stays(&best) {
         return m.clone();
@@ -535,7 +545,7 @@ pub fn refine(ctx: &Context<'_>, m: &DenseMap, samples: &[usize], params: &MapPa
     // Second pass: a fresh profile match from the refined map's sample images, refined again.
     let again: Vec<(usize, usize)> = samples.iter().filter(|&&s| best.map[s] >= 0).map(|&s| (s, best.image[s])).collect();
     if let Some((_, mut image)) = profile_images(ctx, &again, samples, params.accept * ctx.diameter * 2.0, params) {
-        zoomout(basis, &ctx.adjacency, &mut image, 10, params.zoomout_k, params.zoomout_step);
+        zoomout::zoomout_with(zb, &ctx.adjacency, &mut image, 10, params.zoomout_k, params.zoomout_step);
         let second = own(image);
         if stays(&second) && better(&second, &best) {
             best = second;

@@ -20,37 +20,69 @@ use crate::spectral::Eigenbasis;
 /// up to 12k vertices are refined whole).
 pub const SUBSAMPLE: usize = 6000;
 
+/// What every ZoomOut on one basis shares: Φ row-major (a vertex's coefficients contiguous,
+/// for the descents), the vertex subset of the intermediate iterations, and `M Φ` on it
+/// (scaled to the whole surface). Built once per maps stage ([`super::Context::zoom`]) instead
+/// of once per call (the copies were a third of a single polishing step).
+pub struct ZoomBasis {
+    /// `(n · stride)` row-major Φ, the first `stride` eigenfunctions.
+    rows: Vec<f64>,
+    stride: usize,
+    /// The subset (all vertices on small meshes).
+    sub: Vec<usize>,
+    /// `(|sub|, stride)` `scale · m_v Φ(v)`.
+    mphi: Mat<f64>,
+}
+
+impl ZoomBasis {
+    /// The shared data for ZoomOuts up to `kmax` eigenfunctions (capped at the basis size).
+    pub fn new(basis: &Eigenbasis, kmax: usize) -> Self {
+        let n = basis.num_vertices();
+        let stride = kmax.min(basis.k()).max(1);
+        let rows = super::row_major(basis.evecs.as_ref(), stride);
+        let step = if n > 2 * SUBSAMPLE { n.div_ceil(SUBSAMPLE) } else { 1 };
+        let sub: Vec<usize> = (0..n).step_by(step).collect();
+        let scale = basis.mass.iter().sum::<f64>() / sub.iter().map(|&v| basis.mass[v]).sum::<f64>();
+        let mut mphi = Mat::<f64>::zeros(sub.len(), stride);
+        for i in 0..stride {
+            let col = basis.evecs.col(i);
+            for (r, x) in mphi.col_as_slice_mut(i).iter_mut().enumerate() {
+                let v = sub[r];
+                *x = scale * basis.mass[v] * col[v];
+            }
+        }
+        ZoomBasis { rows, stride, sub, mphi }
+    }
+
+    /// Largest ZoomOut size this serves.
+    pub fn size(&self) -> usize {
+        self.stride
+    }
+}
+
 /// Refines `map` (every entry ≥ 0) in place over `k0 < … < k1` eigenfunctions, growing by
 /// `max(step, 15%)` per iteration.
 pub fn zoomout(basis: &Eigenbasis, adjacency: &(Vec<usize>, Vec<u32>), map: &mut [usize], k0: usize, k1: usize, step: usize) {
-    let n = basis.num_vertices();
-    let kmax = k1.min(basis.k());
+    zoomout_with(&ZoomBasis::new(basis, k1), adjacency, map, k0, k1, step)
+}
+
+/// [`zoomout`] with the shared data of a basis (`k1` is capped at its size).
+pub fn zoomout_with(zb: &ZoomBasis, adjacency: &(Vec<usize>, Vec<u32>), map: &mut [usize], k0: usize, k1: usize, step: usize) {
+    let n = zb.rows.len() / zb.stride;
+    let kmax = k1.min(zb.stride);
     let mut k = k0.min(kmax).max(1);
-    // Row-major Φ (one vertex's coefficients contiguous) for the descent, and M Φ for C.
-    let rows = super::row_major(basis.evecs.as_ref(), kmax);
-    // The subset (all vertices on small meshes) and its mass, scaled to the whole surface.
-    let stride = if n > 2 * SUBSAMPLE { n.div_ceil(SUBSAMPLE) } else { 1 };
-    let sub: Vec<usize> = (0..n).step_by(stride).collect();
-    let scale = basis.mass.iter().sum::<f64>() / sub.iter().map(|&v| basis.mass[v]).sum::<f64>();
-    let mut mphi = Mat::<f64>::zeros(sub.len(), kmax);
-    for i in 0..kmax {
-        let col = basis.evecs.col(i);
-        for (r, x) in mphi.col_as_slice_mut(i).iter_mut().enumerate() {
-            let v = sub[r];
-            *x = scale * basis.mass[v] * col[v];
-        }
-    }
-    let dist = |w: usize, target: &[f64]| -> f64 { super::squared_distance(&rows[w * kmax..w * kmax + target.len()], target) };
+    let (rows, stride, sub, mphi) = (&zb.rows, zb.stride, &zb.sub, &zb.mphi);
+    let dist = |w: usize, target: &[f64]| -> f64 { super::squared_distance(&rows[w * stride..w * stride + target.len()], target) };
     // Targets Φ_k(v) C_k of the vertices `vs`, one gemm: column r of `(C_kᵀ Φ_k(vs)ᵀ)` is the
     // target of vs[r], contiguous for the descent. Column v of the row-major Φ read as a
-    // `(kmax, n)` column-major matrix is Φ(v): all vertices need no copy.
-    let all_phi = MatRef::from_column_major_slice_with_stride(&rows, kmax, n, kmax);
+    // `(stride, n)` column-major matrix is Φ(v): all vertices need no copy.
+    let all_phi = MatRef::from_column_major_slice_with_stride(rows, stride, n, stride);
     let targets = |vs: Result<&[usize], std::ops::Range<usize>>, c: &Mat<f64>| -> Mat<f64> {
         let k = c.nrows();
         let gathered;
         let phi = match vs {
             Ok(vs) => {
-                gathered = Mat::<f64>::from_fn(k, vs.len(), |p, r| rows[vs[r] * kmax + p]);
+                gathered = Mat::<f64>::from_fn(k, vs.len(), |p, r| rows[vs[r] * stride + p]);
                 gathered.as_ref()
             }
             Err(range) => all_phi.subrows(0, k).subcols(range.start, range.len()),
@@ -66,7 +98,7 @@ pub fn zoomout(basis: &Eigenbasis, adjacency: &(Vec<usize>, Vec<u32>), map: &mut
         // coefficients, contiguous) at a time.
         for (r, &v) in sub.iter().enumerate() {
             let w = map[v];
-            gather[r * k..(r + 1) * k].copy_from_slice(&rows[w * kmax..w * kmax + k]);
+            gather[r * k..(r + 1) * k].copy_from_slice(&rows[w * stride..w * stride + k]);
         }
         let phit = MatRef::from_row_major_slice(&gather[..sub.len() * k], sub.len(), k);
         let mut c = Mat::<f64>::zeros(k, k);
