@@ -488,24 +488,23 @@ pub fn refinable(ctx: &Context<'_>, m: &DenseMap, params: &MapParams) -> bool {
 /// ZoomOut refinement of a (nearly) global profile map, then a second pass: the refined map's
 /// images of the samples become the anchors of a fresh profile match, refined again (ZoomOut
 /// fixes anchors the candidate had wrong; on TOSCA's michael this turned a 72% map into a 92%
-/// global one). The better of the two (larger region) is returned.
+/// global one). The better of the two (by [`quality`]) is returned: [`refine_second`] of
+/// [`refine_first`]; a candidate the first pass cannot refine is returned unrefined.
 pub fn refine(ctx: &Context<'_>, m: &DenseMap, samples: &[usize], params: &MapParams) -> DenseMap {
-    let (Some(basis), Some(zb)) = (ctx.basis, ctx.zoom()) else { return m.clone() };
-    // A refined map is judged against its own images of the samples (the candidate's anchors
-    // may be partly wrong, and would shrink the region of a right map).
-    let own = |image: Vec<usize>| {
-        let anchors: Vec<(usize, usize)> = samples.iter().map(|&s| (s, image[s])).collect();
-        finish(ctx, anchors, image, params, true)
-    };
+    match refine_first(ctx, m, samples, params) {
+        Ok(first) => refine_second(ctx, m, first, samples, params),
+        Err(unrefined) => unrefined,
+    }
+}
+
+/// The first pass of [`refine`]: two ZoomOut starts (the profile map, and a low-frequency
+/// functional map fitted to the anchors) to a middle size, the better one to `zoomout_k`.
+/// `Err(m)` (unrefined) when no result stays with the candidate.
+pub fn refine_first(ctx: &Context<'_>, m: &DenseMap, samples: &[usize], params: &MapParams) -> Result<DenseMap, DenseMap> {
+    let (Some(basis), Some(zb)) = (ctx.basis, ctx.zoom()) else { return Err(m.clone()) };
+    let own = |image: Vec<usize>| own_map(ctx, image, samples, params);
     let better = |a: &DenseMap, b: &DenseMap| quality(basis, a, params) < quality(basis, b, params);
-    // Refinement must improve the candidate's map, not replace it by another symmetry (seen on
-    // the noisy quadruped: a start drifting from left–right to front–back): a result must agree
-    // with the profile map on at least half of the samples.
-    let agree_tol = 2.0 * params.accept * ctx.diameter;
-    let stays = |r: &DenseMap| {
-        let same = samples.iter().filter(|&&s| ctx.emb.dist(m.image[s], r.image[s]) <= agree_tol).count();
-        2 * same >= samples.len()
-    };
+    let stays = |r: &DenseMap| stays_with(ctx, m, r, samples, params);
     // Two starts, both zoomed out to a middle size; the better one (by `quality`) continues.
     let mid = (params.zoomout_k / 3).max(params.spectral_start).min(params.zoomout_k);
     // The first start: the profile map itself.
@@ -534,24 +533,47 @@ pub fn refine(ctx: &Context<'_>, m: &DenseMap, samples: &[usize], params: &MapPa
         }
     }
     if !stays(&start) {
-        return m.clone();
+        return Err(m.clone());
     }
     let mut image = start.image;
     zoomout::zoomout_with(zb, &ctx.adjacency, &mut image, mid, params.zoomout_k, params.zoomout_step);
-    let mut best = own(image);
+    let best = own(image);
     if !stays(&best) {
-        return m.clone();
+        return Err(m.clone());
     }
-    // Second pass: a fresh profile match from the refined map's sample images, refined again.
+    Ok(best)
+}
+
+/// The second pass of [`refine`] on the first pass's result `first` for the candidate `m`: a
+/// fresh profile match from `first`'s sample images, refined again; the better of the two.
+pub fn refine_second(ctx: &Context<'_>, m: &DenseMap, first: DenseMap, samples: &[usize], params: &MapParams) -> DenseMap {
+    let (Some(basis), Some(zb)) = (ctx.basis, ctx.zoom()) else { return first };
+    let mut best = first;
     let again: Vec<(usize, usize)> = samples.iter().filter(|&&s| best.map[s] >= 0).map(|&s| (s, best.image[s])).collect();
     if let Some((_, mut image)) = profile_images(ctx, &again, samples, params.accept * ctx.diameter * 2.0, params) {
         zoomout::zoomout_with(zb, &ctx.adjacency, &mut image, 10, params.zoomout_k, params.zoomout_step);
-        let second = own(image);
-        if stays(&second) && better(&second, &best) {
+        let second = own_map(ctx, image, samples, params);
+        if stays_with(ctx, m, &second, samples, params) && quality(basis, &second, params) < quality(basis, &best, params) {
             best = second;
         }
     }
     best
+}
+
+/// A refined map judged against its own images of the samples (the candidate's anchors may be
+/// partly wrong, and would shrink the region of a right map).
+fn own_map(ctx: &Context<'_>, image: Vec<usize>, samples: &[usize], params: &MapParams) -> DenseMap {
+    let anchors: Vec<(usize, usize)> = samples.iter().map(|&s| (s, image[s])).collect();
+    finish(ctx, anchors, image, params, true)
+}
+
+/// Refinement must improve the candidate's map `m`, not replace it by another symmetry (seen
+/// on the noisy quadruped: a start drifting from left–right to front–back): a result must agree
+/// with the profile map on at least half of the samples.
+fn stays_with(ctx: &Context<'_>, m: &DenseMap, r: &DenseMap, samples: &[usize], params: &MapParams) -> bool {
+    let agree_tol = 2.0 * params.accept * ctx.diameter;
+    let same = samples.iter().filter(|&&s| ctx.emb.dist(m.image[s], r.image[s]) <= agree_tol).count();
+    2 * same >= samples.len()
 }
 
 /// Lower is better: global maps first, by the complexity of their functional map (the more
