@@ -154,6 +154,9 @@ pub struct Context<'a> {
     pub basis: Option<&'a Eigenbasis>,
     /// ZoomOut's data on `basis` up to `zoom_size` eigenfunctions, built on first use.
     zoom: std::sync::OnceLock<zoomout::ZoomBasis>,
+    /// Every vertex's profile among the samples (the anchors of every refined map's own
+    /// judgement), built on first use.
+    samples: std::sync::OnceLock<(Vec<usize>, Profiles)>,
     zoom_size: usize,
 }
 
@@ -177,12 +180,20 @@ impl<'a> Context<'a> {
         let stride = (n / params.search_vertices.max(1)).max(1);
         let energies = wks.ncols();
         let rows = row_major(wks.as_ref(), energies);
-        Context { positions, emb, adjacency, diameter, search: (0..n).step_by(stride).collect(), wks: rows, energies, basis: None, zoom: Default::default(), zoom_size: params.zoomout_k }
+        Context { positions, emb, adjacency, diameter, search: (0..n).step_by(stride).collect(), wks: rows, energies, basis: None, zoom: Default::default(), samples: Default::default(), zoom_size: params.zoomout_k }
     }
 
     /// Number of vertices.
     pub fn num_vertices(&self) -> usize {
         self.positions.len()
+    }
+
+    /// Every vertex's profile among the anchors `samples` (a refined map's own anchors are the
+    /// samples and their images: the sources, hence the profiles, are the same every time).
+    /// The first list asked for is kept (the maps stage has one); `None` for another.
+    fn sample_profiles(&self, samples: &[usize], params: &MapParams) -> Option<&Profiles> {
+        let (list, profiles) = self.samples.get_or_init(|| (samples.to_vec(), Profiles::new(self.num_vertices(), &self.emb.from_sources(samples), samples.len(), params.local_anchors)));
+        (list.as_slice() == samples).then_some(profiles)
     }
 
     /// ZoomOut's shared data on the basis (up to `zoomout_k` eigenfunctions), `None` without a
@@ -476,8 +487,8 @@ pub fn profile_map(
     initial_tol: f64,
     params: &MapParams,
 ) -> Option<DenseMap> {
-    let (anchors, image) = profile_images(ctx, anchors, samples, initial_tol, params)?;
-    Some(finish(ctx, anchors, image, params, false))
+    let (anchors, image, profiles) = profile_images(ctx, anchors, samples, initial_tol, params)?;
+    Some(finish(ctx, anchors, image, params, false, Some(&profiles)))
 }
 
 /// Whether a profile map is global enough for [`refine`].
@@ -550,7 +561,7 @@ pub fn refine_second(ctx: &Context<'_>, m: &DenseMap, first: DenseMap, samples: 
     let (Some(basis), Some(zb)) = (ctx.basis, ctx.zoom()) else { return first };
     let mut best = first;
     let again: Vec<(usize, usize)> = samples.iter().filter(|&&s| best.map[s] >= 0).map(|&s| (s, best.image[s])).collect();
-    if let Some((_, mut image)) = profile_images(ctx, &again, samples, params.accept * ctx.diameter * 2.0, params) {
+    if let Some((_, mut image, _)) = profile_images(ctx, &again, samples, params.accept * ctx.diameter * 2.0, params) {
         zoomout::zoomout_with(zb, &ctx.adjacency, &mut image, 10, params.zoomout_k, params.zoomout_step);
         let second = own_map(ctx, image, samples, params);
         if stays_with(ctx, m, &second, samples, params) && quality(basis, &second, params) < quality(basis, &best, params) {
@@ -564,7 +575,7 @@ pub fn refine_second(ctx: &Context<'_>, m: &DenseMap, first: DenseMap, samples: 
 /// partly wrong, and would shrink the region of a right map).
 fn own_map(ctx: &Context<'_>, image: Vec<usize>, samples: &[usize], params: &MapParams) -> DenseMap {
     let anchors: Vec<(usize, usize)> = samples.iter().map(|&s| (s, image[s])).collect();
-    finish(ctx, anchors, image, params, true)
+    finish(ctx, anchors, image, params, true, ctx.sample_profiles(samples, params))
 }
 
 /// Refinement must improve the candidate's map `m`, not replace it by another symmetry (seen
@@ -593,7 +604,7 @@ fn profile_images(
     samples: &[usize],
     initial_tol: f64,
     params: &MapParams,
-) -> Option<(Vec<(usize, usize)>, Vec<usize>)> {
+) -> Option<(Vec<(usize, usize)>, Vec<usize>, Profiles)> {
     let n = ctx.num_vertices();
     let tol = params.accept * ctx.diameter;
     let mut anchors: Vec<(usize, usize)> = anchors.to_vec();
@@ -655,18 +666,8 @@ fn profile_images(
     let (dsrc, ddst) = crate::parallel::join(|| ctx.emb.from_sources(&src), || ctx.emb.from_sources(&dst_v));
     // Every vertex's profile (its nearest anchors), on all cores; the descents below are
     // sequential (each starts from its mapped neighbours' images).
-    let k = params.local_anchors.min(src.len());
-    let profiles: Vec<(usize, f64)> = crate::parallel::chunks(n, |range| {
-        let mut profile = Vec::new();
-        let mut out = Vec::with_capacity(range.len() * k);
-        for v in range {
-            nearest_profile(|i| dsrc[(v, i)], 0..src.len(), params.local_anchors, &mut profile);
-            debug_assert_eq!(profile.len(), k);
-            out.extend_from_slice(&profile);
-        }
-        out
-    })
-    .concat();
+    let vertex_profiles = Profiles::new(n, &dsrc, src.len(), params.local_anchors);
+    let (k, profiles) = (vertex_profiles.k, &vertex_profiles.entries);
     let mut best = vec![usize::MAX; n];
     // Breadth-first from the anchor sources so that neighbours' images are good starts.
     let mut queue = std::collections::VecDeque::new();
@@ -699,27 +700,73 @@ fn profile_images(
             }
         }
     }
-    Some((anchors, best))
+    Some((anchors, best, vertex_profiles.with_targets(ddst)))
+}
+
+/// Every vertex's profile, its `k` nearest anchors `(anchor, distance)` (row `v` at
+/// `entries[v·k..]`, as [`nearest_profile`] gives them), and the distances from the anchors'
+/// targets (`(n, anchors)`, once known): what [`finish`] would compute again for the same
+/// anchors.
+struct Profiles {
+    k: usize,
+    entries: Vec<(usize, f64)>,
+    targets: Option<Mat<f64>>,
+}
+
+impl Profiles {
+    /// The profiles of `n` vertices among `anchors` anchors with distances `dsrc` `(n, anchors)`,
+    /// on all cores.
+    fn new(n: usize, dsrc: &Mat<f64>, anchors: usize, local: usize) -> Profiles {
+        let k = local.min(anchors);
+        let entries = crate::parallel::chunks(n, |range| {
+            let mut profile = Vec::new();
+            let mut out = Vec::with_capacity(range.len() * k);
+            for v in range {
+                nearest_profile(|i| dsrc[(v, i)], 0..anchors, local, &mut profile);
+                debug_assert_eq!(profile.len(), k);
+                out.extend_from_slice(&profile);
+            }
+            out
+        })
+        .concat();
+        Profiles { k, entries, targets: None }
+    }
+
+    fn with_targets(self, targets: Mat<f64>) -> Profiles {
+        Profiles { targets: Some(targets), ..self }
+    }
+
+    fn of(&self, v: usize) -> &[(usize, f64)] {
+        &self.entries[v * self.k..(v + 1) * self.k]
+    }
 }
 
 /// Mismatch, region and confidence of `image` under `anchors`. A map whose region covers
 /// `global_fraction` of the vertices is global and defined everywhere.
-fn finish(ctx: &Context<'_>, anchors: Vec<(usize, usize)>, image: Vec<usize>, params: &MapParams, refined: bool) -> DenseMap {
+/// `known`: the vertices' profiles among these anchors (and, when known, the distances from
+/// their targets), computed already.
+fn finish(ctx: &Context<'_>, anchors: Vec<(usize, usize)>, image: Vec<usize>, params: &MapParams, refined: bool, known: Option<&Profiles>) -> DenseMap {
     let n = ctx.num_vertices();
     let tol = params.accept * ctx.diameter;
     let src: Vec<usize> = anchors.iter().map(|a| a.0).collect();
     let dst_v: Vec<usize> = anchors.iter().map(|a| a.1).collect();
-    let (dsrc, ddst) = crate::parallel::join(|| ctx.emb.from_sources(&src), || ctx.emb.from_sources(&dst_v));
-    let mismatch_of: Vec<f64> = crate::parallel::chunks(n, |range| {
-        let mut profile = Vec::new();
-        range
-            .map(|v| {
-                nearest_profile(|i| dsrc[(v, i)], 0..src.len(), params.local_anchors, &mut profile);
-                mismatch(&profile, &ddst, image[v])
-            })
-            .collect::<Vec<f64>>()
-    })
-    .concat();
+    let computed;
+    let profiles = match known {
+        Some(p) => p,
+        None => {
+            computed = Profiles::new(n, &ctx.emb.from_sources(&src), src.len(), params.local_anchors);
+            &computed
+        }
+    };
+    let fresh;
+    let ddst = match &profiles.targets {
+        Some(t) => t,
+        None => {
+            fresh = ctx.emb.from_sources(&dst_v);
+            &fresh
+        }
+    };
+    let mismatch_of: Vec<f64> = crate::parallel::chunks(n, |range| range.map(|v| mismatch(profiles.of(v), ddst, image[v])).collect::<Vec<f64>>()).concat();
     let in_region = |v: usize| mismatch_of[v] <= tol && ctx.wks_distance(v, image[v]) <= params.wks_accept;
     let inside: Vec<bool> = (0..n).map(in_region).collect();
     let global = inside.iter().filter(|&&x| x).count() as f64 >= params.global_fraction * n as f64;
