@@ -488,7 +488,7 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
         // Maps are polished independently, on all cores (the result does not depend on it), in
         // rounds of twice as many maps as cores (a free core takes the next map of its round)
         // with a cancellation check between rounds.
-        let cores = std::thread::available_parallelism().map_or(1, |c| c.get());
+        let cores = crate::parallel::cores();
         for round in found.chunks_mut(2 * cores) {
             if !progress(0.95) {
                 return Err(cancelled());

@@ -24,12 +24,19 @@ fn nested<R>(f: impl FnOnce() -> R) -> R {
     r
 }
 
+/// The number of cores, asked once: `available_parallelism` reads the cgroup's quota files
+/// on every call (about ten system calls; the maps stage has hundreds of parallel regions).
+pub(crate) fn cores() -> usize {
+    static CORES: std::sync::OnceLock<usize> = std::sync::OnceLock::new();
+    *CORES.get_or_init(|| std::thread::available_parallelism().map_or(1, |t| t.get()))
+}
+
 /// Threads for `items` pieces of work here: 1 inside a parallel region.
 fn threads_for(items: usize) -> usize {
     if NESTED.with(Cell::get) {
         return 1;
     }
-    std::thread::available_parallelism().map_or(1, |t| t.get()).min(items)
+    cores().min(items)
 }
 
 /// `f` applied to every item, on up to `available_parallelism` threads, results in item order.
