@@ -192,7 +192,9 @@ impl<'a> Context<'a> {
     /// samples and their images: the sources, hence the profiles, are the same every time).
     /// The first list asked for is kept (the maps stage has one); `None` for another.
     fn sample_profiles(&self, samples: &[usize], params: &MapParams) -> Option<&Profiles> {
-        let (list, profiles) = self.samples.get_or_init(|| (samples.to_vec(), Profiles::new(self.num_vertices(), &self.emb.from_sources(samples), samples.len(), params.local_anchors)));
+        // Serial inside the initialiser: a parallel loop there could take, on a waiting core,
+        // another task that waits for this same initialisation (a deadlock).
+        let (list, profiles) = self.samples.get_or_init(|| (samples.to_vec(), Profiles::with_threads(self.num_vertices(), &self.emb.from_sources(samples), samples.len(), params.local_anchors, false)));
         (list.as_slice() == samples).then_some(profiles)
     }
 
@@ -717,8 +719,13 @@ impl Profiles {
     /// The profiles of `n` vertices among `anchors` anchors with distances `dsrc` `(n, anchors)`,
     /// on all cores.
     fn new(n: usize, dsrc: &Mat<f64>, anchors: usize, local: usize) -> Profiles {
+        Self::with_threads(n, dsrc, anchors, local, true)
+    }
+
+    /// [`Profiles::new`], on one thread unless `parallel`.
+    fn with_threads(n: usize, dsrc: &Mat<f64>, anchors: usize, local: usize, parallel: bool) -> Profiles {
         let k = local.min(anchors);
-        let entries = crate::parallel::chunks(n, |range| {
+        let rows = |range: std::ops::Range<usize>| {
             let mut profile = Vec::new();
             let mut out = Vec::with_capacity(range.len() * k);
             for v in range {
@@ -727,8 +734,8 @@ impl Profiles {
                 out.extend_from_slice(&profile);
             }
             out
-        })
-        .concat();
+        };
+        let entries = if parallel { crate::parallel::chunks(n, rows).concat() } else { rows(0..n) };
         Profiles { k, entries, targets: None }
     }
 
