@@ -496,7 +496,11 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
             let polished = crate::parallel::map(round, |f: &Found| {
                 let mut dense = f.dense.clone();
                 for _ in 0..params.maps.polish {
-                    dense = maps::geodesic::polish(&ctx, geodesics, &dense, anchors, &params.maps);
+                    // A pass that changes nothing ends the polish: the next would not either.
+                    match maps::geodesic::try_polish(&ctx, geodesics, &dense, anchors, &params.maps) {
+                        Some(polished) => dense = polished,
+                        None => break,
+                    }
                 }
                 dense
             });

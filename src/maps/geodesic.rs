@@ -289,11 +289,18 @@ impl Pairs<'_> {
 /// The geodesic polish of a map (see the module docs); `samples` are the anchor candidates.
 /// Returns the map unchanged when fewer than 3 sample pairs are consistent.
 pub fn polish(ctx: &Context<'_>, geodesics: &Geodesics, m: &DenseMap, samples: &[usize], params: &MapParams) -> DenseMap {
+    try_polish(ctx, geodesics, m, samples, params).unwrap_or_else(|| m.clone())
+}
+
+/// [`polish`], or `None` when it leaves the map unchanged (fewer than 3 consistent sample
+/// pairs): polishing again would change nothing either (a partial map's pairs are rarely
+/// consistent with most others; on TOSCA's dog1 five of six maps).
+pub fn try_polish(ctx: &Context<'_>, geodesics: &Geodesics, m: &DenseMap, samples: &[usize], params: &MapParams) -> Option<DenseMap> {
     let n = ctx.num_vertices();
     let k = params.local_anchors;
     let src: Vec<usize> = samples.iter().copied().filter(|&s| m.map[s] >= 0).collect();
     if src.len() < 3 {
-        return m.clone();
+        return None;
     }
     let s = src.len();
     let ga = geodesics.table(&src);
@@ -301,7 +308,7 @@ pub fn polish(ctx: &Context<'_>, geodesics: &Geodesics, m: &DenseMap, samples: &
     let gb0 = geodesics.table(&dst0);
     let diameter = ga.iter().copied().filter(|d| d.is_finite()).fold(0.0, f64::max);
     if diameter <= 0.0 {
-        return m.clone();
+        return None;
     }
     let tol = params.accept * diameter;
     // 1. Trusted pairs: consistent with most others.
@@ -314,7 +321,7 @@ pub fn polish(ctx: &Context<'_>, geodesics: &Geodesics, m: &DenseMap, samples: &
         })
         .collect();
     if trusted.len() < 3 {
-        return m.clone();
+        return None;
     }
     // The other samples, matched again against the trusted anchors.
     let mut dst = dst0.clone();
@@ -452,7 +459,7 @@ pub fn polish(ctx: &Context<'_>, geodesics: &Geodesics, m: &DenseMap, samples: &
         }
     }
     let region_size = map.iter().filter(|&&t| t >= 0).count();
-    DenseMap {
+    Some(DenseMap {
         map,
         confidence,
         mismatch,
@@ -461,7 +468,7 @@ pub fn polish(ctx: &Context<'_>, geodesics: &Geodesics, m: &DenseMap, samples: &
         global,
         refined: m.refined,
         image,
-    }
+    })
 }
 
 #[cfg(test)]
