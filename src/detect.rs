@@ -350,15 +350,15 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
     impl Refinement {
         fn now(ctx: &Context<'_>, m: &maps::DenseMap, probes: &[usize], params: &maps::MapParams, is_duplicate: impl Fn(&maps::DenseMap) -> bool) -> maps::DenseMap {
             match maps::refine_first(ctx, m, probes, params) {
-                Err(unrefined) => unrefined,
-                Ok(first) if is_duplicate(&first) => first,
-                Ok(first) => maps::refine_second(ctx, m, first, probes, params),
+                None => m.clone(),
+                Some(first) if is_duplicate(&first) => first,
+                Some(first) => maps::refine_second(ctx, m, first, probes, params),
             }
         }
         fn ahead(ctx: &Context<'_>, m: &maps::DenseMap, probes: &[usize], params: &maps::MapParams) -> Refinement {
             match maps::refine_first(ctx, m, probes, params) {
-                Err(unrefined) => Refinement::Unrefined(unrefined),
-                Ok(first) => {
+                None => Refinement::Unrefined(m.clone()),
+                Some(first) => {
                     let full = maps::refine_second(ctx, m, first.clone(), probes, params);
                     Refinement::Passes(first, full)
                 }

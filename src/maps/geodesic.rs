@@ -442,7 +442,7 @@ pub fn try_polish(ctx: &Context<'_>, geodesics: &Geodesics, m: &DenseMap, sample
         let image = &image;
         let smoothed = crate::parallel::chunks(n, |range| range.map(|v| if done[v] { pairs.cost(&profiles[v * k..v * k + profile_len[v]], image[v]) } else { mismatch[v] }).collect::<Vec<f64>>());
         mismatch = smoothed.concat();
-        inside = inside_of(&image, &mismatch);
+        inside = inside_of(image, &mismatch);
     }
     // Vertices the search did not reach (other components) keep their image.
     let mut map = m.map.clone();

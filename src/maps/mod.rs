@@ -505,16 +505,16 @@ pub fn refinable(ctx: &Context<'_>, m: &DenseMap, params: &MapParams) -> bool {
 /// [`refine_first`]; a candidate the first pass cannot refine is returned unrefined.
 pub fn refine(ctx: &Context<'_>, m: &DenseMap, samples: &[usize], params: &MapParams) -> DenseMap {
     match refine_first(ctx, m, samples, params) {
-        Ok(first) => refine_second(ctx, m, first, samples, params),
-        Err(unrefined) => unrefined,
+        Some(first) => refine_second(ctx, m, first, samples, params),
+        None => m.clone(),
     }
 }
 
 /// The first pass of [`refine`]: two ZoomOut starts (the profile map, and a low-frequency
 /// functional map fitted to the anchors) to a middle size, the better one to `zoomout_k`.
-/// `Err(m)` (unrefined) when no result stays with the candidate.
-pub fn refine_first(ctx: &Context<'_>, m: &DenseMap, samples: &[usize], params: &MapParams) -> Result<DenseMap, DenseMap> {
-    let (Some(basis), Some(zb)) = (ctx.basis, ctx.zoom()) else { return Err(m.clone()) };
+/// `None` (the candidate stays unrefined) when no result stays with the candidate.
+pub fn refine_first(ctx: &Context<'_>, m: &DenseMap, samples: &[usize], params: &MapParams) -> Option<DenseMap> {
+    let (Some(basis), Some(zb)) = (ctx.basis, ctx.zoom()) else { return None };
     let own = |image: Vec<usize>| own_map(ctx, image, samples, params);
     let better = |a: &DenseMap, b: &DenseMap| quality(basis, a, params) < quality(basis, b, params);
     let stays = |r: &DenseMap| stays_with(ctx, m, r, samples, params);
@@ -546,15 +546,15 @@ pub fn refine_first(ctx: &Context<'_>, m: &DenseMap, samples: &[usize], params: 
         }
     }
     if !stays(&start) {
-        return Err(m.clone());
+        return None;
     }
     let mut image = start.image;
     zoomout::zoomout_with(zb, &ctx.adjacency, &mut image, mid, params.zoomout_k, params.zoomout_step);
     let best = own(image);
     if !stays(&best) {
-        return Err(m.clone());
+        return None;
     }
-    Ok(best)
+    Some(best)
 }
 
 /// The second pass of [`refine`] on the first pass's result `first` for the candidate `m`: a
@@ -599,6 +599,9 @@ fn quality(basis: &Eigenbasis, m: &DenseMap, params: &MapParams) -> f64 {
     }
 }
 
+/// A profile match: refined anchors, every vertex's image, and the vertices' profiles.
+type ProfileMatch = (Vec<(usize, usize)>, Vec<usize>, Profiles);
+
 /// Anchor refinement and the dense profile match: refined anchors and every vertex's image.
 fn profile_images(
     ctx: &Context<'_>,
@@ -606,7 +609,7 @@ fn profile_images(
     samples: &[usize],
     initial_tol: f64,
     params: &MapParams,
-) -> Option<(Vec<(usize, usize)>, Vec<usize>, Profiles)> {
+) -> Option<ProfileMatch> {
     let n = ctx.num_vertices();
     let tol = params.accept * ctx.diameter;
     let mut anchors: Vec<(usize, usize)> = anchors.to_vec();

@@ -115,7 +115,7 @@ pub fn zoomout_with(zb: &ZoomBasis, adjacency: &(Vec<usize>, Vec<u32>), map: &mu
         if k >= kmax && sub.len() < n {
             // Last iteration on a large mesh: every other vertex, breadth-first from the subset.
             let t = targets(Err(0..n), &c);
-            super::breadth_first(adjacency, &sub, |v, u| {
+            super::breadth_first(adjacency, sub, |v, u| {
                 let target = t.col_as_slice(u);
                 let start = if dist(map[v], target) < dist(map[u], target) { map[v] } else { map[u] };
                 map[u] = super::greedy_descent(adjacency, start, |w| dist(w, target)).0;
