@@ -323,62 +323,13 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
         !both.is_empty() && same as f64 >= fraction * both.len() as f64
     };
     let same_as = |dense: &maps::DenseMap, found: &[Found], fraction: f64| found.iter().position(|f| agrees(&f.dense, dense, fraction));
-    // A refinement's second pass (`maps::refine_second`) is skipped when its first pass is a
-    // global map that duplicates a refined global symmetry found so far without beating it
-    // (`better`): the result would be dropped (on TOSCA such second passes never made the
-    // duplicate better; they were 40% of the refinement time). A speculative refinement runs
-    // both passes and decides when its turn comes, with the symmetries found by then, so the
-    // result is the sequential one.
-    let duplicate = |first: &maps::DenseMap, found: &[Found]| -> bool {
-        if !first.global {
-            return false;
-        }
-        match same_as(first, found, 0.5) {
-            Some(i) if found[i].dense.refined && found[i].dense.global => {
-                let complexity = characterize::complexity(&maps::functional_map(basis, &first.map, params.maps.fmap_size), params.complexity_width);
-                complexity >= found[i].complexity
-            }
-            _ => false,
-        }
-    };
-    enum Refinement {
-        /// The candidate could not be refined.
-        Unrefined(maps::DenseMap),
-        /// The first pass, and the result of both.
-        Passes(maps::DenseMap, maps::DenseMap),
-    }
-    impl Refinement {
-        fn now(ctx: &Context<'_>, m: &maps::DenseMap, probes: &[usize], params: &maps::MapParams, is_duplicate: impl Fn(&maps::DenseMap) -> bool) -> maps::DenseMap {
-            match maps::refine_first(ctx, m, probes, params) {
-                None => m.clone(),
-                Some(first) if is_duplicate(&first) => first,
-                Some(first) => maps::refine_second(ctx, m, first, probes, params),
-            }
-        }
-        fn ahead(ctx: &Context<'_>, m: &maps::DenseMap, probes: &[usize], params: &maps::MapParams) -> Refinement {
-            match maps::refine_first(ctx, m, probes, params) {
-                None => Refinement::Unrefined(m.clone()),
-                Some(first) => {
-                    let full = maps::refine_second(ctx, m, first.clone(), probes, params);
-                    Refinement::Passes(first, full)
-                }
-            }
-        }
-        fn resolve(self, is_duplicate: impl Fn(&maps::DenseMap) -> bool) -> maps::DenseMap {
-            match self {
-                Refinement::Unrefined(m) => m,
-                Refinement::Passes(first, _) if is_duplicate(&first) => first,
-                Refinement::Passes(_, full) => full,
-            }
-        }
-    }
     // Phase 2: refine (nearly) global maps, keep those that move points and preserve distances.
     let total = profiled.len().max(1);
     let mut refinements = 0;
     let mut fruitless = 0;
     // A refinement computed ahead of its turn, alongside the current one (speculation on the
     // second core: refine only depends on the map, so the result is the sequential one).
-    let mut ahead: Option<(usize, Refinement)> = None;
+    let mut ahead: Option<(usize, maps::DenseMap)> = None;
     let skip = |dense: &maps::DenseMap, found: &[Found]| same_as(dense, found, 0.8).is_some_and(|i| found[i].dense.refined);
     let parallel = crate::parallel::available();
     // The order of work: by score, but a candidate that is none of the symmetries found so far
@@ -414,7 +365,7 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
             // Counted as fruitless until it turns out to be a new symmetry (below).
             fruitless += 1;
             dense = match ahead.take() {
-                Some((j, refined)) if j == pi => refined.resolve(|f| duplicate(f, &found)),
+                Some((j, refined)) if j == pi => refined,
                 other => {
                     // A speculation for a later candidate is kept; one for a candidate that
                     // was skipped meanwhile is dropped (it would block the next speculation).
@@ -435,11 +386,11 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
                         .flatten();
                     match next {
                         Some(j) => {
-                            let (next, refined) = crate::parallel::join(|| Refinement::ahead(&ctx, &profiled[j].0, probes, &params.maps), || Refinement::now(&ctx, &dense, probes, &params.maps, |f| duplicate(f, &found)));
+                            let (next, refined) = crate::parallel::join(|| maps::refine(&ctx, &profiled[j].0, probes, &params.maps), || maps::refine(&ctx, &dense, probes, &params.maps));
                             ahead = Some((j, next));
                             refined
                         }
-                        None => Refinement::now(&ctx, &dense, probes, &params.maps, |f| duplicate(f, &found)),
+                        None => maps::refine(&ctx, &dense, probes, &params.maps),
                     }
                 }
             };
