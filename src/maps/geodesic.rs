@@ -474,19 +474,15 @@ pub fn try_polish(ctx: &Context<'_>, geodesics: &Geodesics, m: &DenseMap, sample
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::descriptors::{wks, WksParams};
-    use crate::distance::biharmonic;
+    use crate::maps::test_spectra;
     use crate::sampling::farthest_point;
     use crate::shapes::{self, Pose};
-    use crate::spectral::{Eigenbasis, EigenParams};
 
     /// Dijkstra distances are exact along edges and bounded below by straight lines.
     #[test]
     fn edge_distances_are_metric() {
         let c = shapes::quadruped(3, Pose::Rest, 0.0, 0);
-        let basis = Eigenbasis::compute(&c.mesh, &EigenParams { k: 10, ..Default::default() }).unwrap();
-        let emb = biharmonic(&basis);
-        let desc = wks(&basis, &WksParams::default());
+        let (_basis, emb, desc) = test_spectra(&c.mesh, 10);
         let ctx = Context::new(&c.mesh, &emb, &desc, 1.0, &MapParams::default());
         let g = EdgeGraph::new(ctx.positions, ctx.adjacency.clone());
         let d0 = g.distances(0);
@@ -527,9 +523,7 @@ mod tests {
     fn polish_repairs_a_wrongly_mapped_leg() {
         let c = shapes::quadruped(4, Pose::Rest, 0.002, 3);
         let n = c.mesh.num_vertices();
-        let basis = Eigenbasis::compute(&c.mesh, &EigenParams::default()).unwrap();
-        let emb = biharmonic(&basis);
-        let desc = wks(&basis, &WksParams::default());
+        let (_basis, emb, desc) = test_spectra(&c.mesh, crate::spectral::EigenParams::default().k);
         let samples = farthest_point(&emb, 64, 0).vertices;
         let emb_ref = &emb;
         let diameter = samples.iter().flat_map(|&a| samples.iter().map(move |&b| emb_ref.dist(a, b))).fold(0.0, f64::max);

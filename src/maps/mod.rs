@@ -387,6 +387,13 @@ fn multi_start(ctx: &Context<'_>, mut cost: impl FnMut(usize) -> f64) -> usize {
 /// Descents per coarse search ([`multi_start`]).
 const STARTS: usize = 8;
 
+/// The target distances of the coarse subset `ctx.search`, row-major (`rows[r·p + i] =
+/// dst(search[r], i)`, a vertex's `p` distances contiguous), for [`robust_multi_start`].
+fn search_rows(ctx: &Context<'_>, dst: &Mat<f64>) -> Vec<f64> {
+    let p = dst.ncols();
+    ctx.search.iter().flat_map(|&w| (0..p).map(move |i| dst[(w, i)])).collect()
+}
+
 /// [`multi_start`] of the trimmed mismatch ([`robust_mismatch`]) of `profile` (the
 /// anchors `0..p` in order, as the first round of anchor refinement has them), with the same
 /// result: `rows` holds the target distances of the coarse subset row-major (`rows[r·p + i]
@@ -501,8 +508,8 @@ pub fn refinable(ctx: &Context<'_>, m: &DenseMap, params: &MapParams) -> bool {
 /// ZoomOut refinement of a (nearly) global profile map, then a second pass: the refined map's
 /// images of the samples become the anchors of a fresh profile match, refined again (ZoomOut
 /// fixes anchors the candidate had wrong; on TOSCA's michael this turned a 72% map into a 92%
-/// global one). The better of the two (by [`quality`]) is returned: [`refine_second`] of
-/// [`refine_first`]; a candidate the first pass cannot refine is returned unrefined.
+/// global one). The better of the two (by `quality`) is returned: `refine_second` of
+/// `refine_first`; a candidate the first pass cannot refine is returned unrefined.
 pub fn refine(ctx: &Context<'_>, m: &DenseMap, samples: &[usize], params: &MapParams) -> DenseMap {
     match refine_first(ctx, m, samples, params) {
         Some(first) => refine_second(ctx, m, first, samples, params),
@@ -513,7 +520,7 @@ pub fn refine(ctx: &Context<'_>, m: &DenseMap, samples: &[usize], params: &MapPa
 /// The first pass of [`refine`]: two ZoomOut starts (the profile map, and a low-frequency
 /// functional map fitted to the anchors) to a middle size, the better one to `zoomout_k`.
 /// `None` (the candidate stays unrefined) when no result stays with the candidate.
-pub fn refine_first(ctx: &Context<'_>, m: &DenseMap, samples: &[usize], params: &MapParams) -> Option<DenseMap> {
+fn refine_first(ctx: &Context<'_>, m: &DenseMap, samples: &[usize], params: &MapParams) -> Option<DenseMap> {
     let (Some(basis), Some(zb)) = (ctx.basis, ctx.zoom()) else { return None };
     let own = |image: Vec<usize>| own_map(ctx, image, samples, params);
     let better = |a: &DenseMap, b: &DenseMap| quality(basis, a, params) < quality(basis, b, params);
@@ -559,7 +566,7 @@ pub fn refine_first(ctx: &Context<'_>, m: &DenseMap, samples: &[usize], params: 
 
 /// The second pass of [`refine`] on the first pass's result `first` for the candidate `m`: a
 /// fresh profile match from `first`'s sample images, refined again; the better of the two.
-pub fn refine_second(ctx: &Context<'_>, m: &DenseMap, first: DenseMap, samples: &[usize], params: &MapParams) -> DenseMap {
+fn refine_second(ctx: &Context<'_>, m: &DenseMap, first: DenseMap, samples: &[usize], params: &MapParams) -> DenseMap {
     let (Some(basis), Some(zb)) = (ctx.basis, ctx.zoom()) else { return first };
     let mut best = first;
     let again: Vec<(usize, usize)> = samples.iter().filter(|&&s| best.map[s] >= 0).map(|&s| (s, best.image[s])).collect();
@@ -624,7 +631,7 @@ fn profile_images(
         let sd = ctx.emb.between(samples, &src);
         // The first round's coarse searches read the target distances of the coarse subset,
         // contiguous per vertex (see `robust_multi_start`).
-        let search_rows: Vec<f64> = if round == 0 { ctx.search.iter().flat_map(|&w| (0..dst_v.len()).map(move |i| (w, i))).map(|(w, i)| dst[(w, i)]).collect() } else { Vec::new() };
+        let search_rows = if round == 0 { search_rows(ctx, &dst) } else { Vec::new() };
         // Each sample's match is independent (on all cores); the anchors are then taken in
         // sample order, each image used once.
         let indices: Vec<usize> = (0..samples.len()).collect();
@@ -672,7 +679,6 @@ fn profile_images(
     // Every vertex's profile (its nearest anchors), on all cores; the descents below are
     // sequential (each starts from its mapped neighbours' images).
     let vertex_profiles = Profiles::new(n, &dsrc, src.len(), params.local_anchors);
-    let (k, profiles) = (vertex_profiles.k, &vertex_profiles.entries);
     let mut best = vec![usize::MAX; n];
     // Breadth-first from the anchor sources so that neighbours' images are good starts.
     let mut queue = std::collections::VecDeque::new();
@@ -684,7 +690,7 @@ fn profile_images(
         }
     }
     while let Some(v) = queue.pop_front() {
-        let profile = &profiles[v * k..(v + 1) * k];
+        let profile = vertex_profiles.of(v);
         let nearest = profile.iter().fold(profile[0], |b, &p| if p.1 < b.1 { p } else { b }).0;
         let mut start = dst_v[nearest];
         let mut start_c = mismatch(profile, &ddst, start);
@@ -825,13 +831,20 @@ pub fn functional_map(basis: &Eigenbasis, map: &[i64], k_f: usize) -> Mat<f64> {
     c
 }
 
+/// The spectral data the maps' tests start from: a mesh's eigenbasis (`k` pairs), biharmonic
+/// embedding and WKS (default parameters).
+#[cfg(test)]
+pub(crate) fn test_spectra(mesh: &Mesh, k: usize) -> (Eigenbasis, BiharmonicEmbedding, Mat<f64>) {
+    let basis = Eigenbasis::compute(mesh, &crate::spectral::EigenParams { k, ..Default::default() }).expect("a generated mesh has an eigenbasis");
+    let emb = crate::distance::biharmonic(&basis);
+    let desc = crate::descriptors::wks(&basis, &crate::descriptors::WksParams::default());
+    (basis, emb, desc)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::descriptors::{wks, WksParams};
-    use crate::distance::biharmonic;
     use crate::shapes::{self, Pose};
-    use crate::spectral::EigenParams;
 
     /// The pruned coarse search of the trimmed mismatch ranks exactly as the exhaustive one:
     /// on a posed quadruped, for true mirror anchors with a third of them scrambled (as a
@@ -840,9 +853,7 @@ mod tests {
     #[test]
     fn pruned_robust_search_is_the_exhaustive_one() {
         let c = shapes::quadruped(4, Pose::Walking, 0.0, 0);
-        let basis = Eigenbasis::compute(&c.mesh, &EigenParams { k: 30, ..Default::default() }).unwrap();
-        let emb = biharmonic(&basis);
-        let desc = wks(&basis, &WksParams::default());
+        let (_basis, emb, desc) = test_spectra(&c.mesh, 30);
         let diameter = (0..c.mesh.num_vertices()).step_by(7).map(|v| emb.dist(0, v)).fold(0.0, f64::max);
         let ctx = Context::new(&c.mesh, &emb, &desc, diameter, &MapParams::default());
         let n = c.mesh.num_vertices();
@@ -852,7 +863,7 @@ mod tests {
         let src: Vec<usize> = anchors.iter().map(|a| a.0).collect();
         let dst = emb.from_sources(&dst_v);
         let sd = emb.between(&samples, &src);
-        let rows: Vec<f64> = ctx.search.iter().flat_map(|&w| (0..dst_v.len()).map(move |i| (w, i))).map(|(w, i)| dst[(w, i)]).collect();
+        let rows = search_rows(&ctx, &dst);
         let (mut scratch, mut scratch2, mut profile) = (Vec::new(), Vec::new(), Vec::new());
         for si in 0..samples.len() {
             nearest_profile(|i| sd[(si, i)], 0..src.len(), src.len(), &mut profile);

@@ -262,17 +262,12 @@ fn geodesic_farthest_points(graph: &EdgeGraph, first: &[usize], size: usize) -> 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::descriptors::{wks, WksParams};
-    use crate::distance::biharmonic;
     use crate::shapes::{self, Pose};
-    use crate::spectral::EigenParams;
 
     /// A quadruped, its basis (k = 20) and the proxy of `size` vertices starting at `first`.
     fn proxy_of(level: u32, pose: Pose, first: &[usize], size: usize) -> (shapes::Creature, Eigenbasis, Proxy) {
         let c = shapes::quadruped(level, pose, 0.0, 0);
-        let basis = Eigenbasis::compute(&c.mesh, &EigenParams { k: 20, ..Default::default() }).unwrap();
-        let emb = biharmonic(&basis);
-        let desc = wks(&basis, &WksParams::default());
+        let (basis, emb, desc) = crate::maps::test_spectra(&c.mesh, 20);
         let p = Proxy::new(&c.mesh, &basis, &emb, &desc, first, size);
         (c, basis, p)
     }

@@ -77,20 +77,14 @@ pub fn zoomout_with(zb: &ZoomBasis, adjacency: &(Vec<usize>, Vec<u32>), map: &mu
     // target of vs[r], contiguous for the descent. Column v of the row-major Φ read as a
     // `(stride, n)` column-major matrix is Φ(v): all vertices need no copy.
     let all_phi = MatRef::from_column_major_slice_with_stride(rows, stride, n, stride);
-    let targets = |vs: Result<&[usize], std::ops::Range<usize>>, c: &Mat<f64>| -> Mat<f64> {
-        let k = c.nrows();
-        let gathered;
-        let phi = match vs {
-            Ok(vs) => {
-                gathered = Mat::<f64>::from_fn(k, vs.len(), |p, r| rows[vs[r] * stride + p]);
-                gathered.as_ref()
-            }
-            Err(range) => all_phi.subrows(0, k).subcols(range.start, range.len()),
-        };
-        let mut t = Mat::<f64>::zeros(k, phi.ncols());
+    let product = |c: &Mat<f64>, phi: MatRef<'_, f64>| -> Mat<f64> {
+        let mut t = Mat::<f64>::zeros(c.nrows(), phi.ncols());
         faer::linalg::matmul::matmul(t.as_mut(), Accum::Replace, c.transpose(), phi, 1.0, Par::Seq);
         t
     };
+    // The targets of the vertices `range` (no copy), or of the vertices `vs` (gathered).
+    let targets_in = |range: std::ops::Range<usize>, c: &Mat<f64>| product(c, all_phi.subrows(0, c.nrows()).subcols(range.start, range.len()));
+    let targets_of = |vs: &[usize], c: &Mat<f64>| product(c, Mat::<f64>::from_fn(c.nrows(), vs.len(), |p, r| rows[vs[r] * stride + p]).as_ref());
     let whole = sub.len() == n;
     let mut gather = vec![0.0; sub.len() * kmax];
     loop {
@@ -106,7 +100,7 @@ pub fn zoomout_with(zb: &ZoomBasis, adjacency: &(Vec<usize>, Vec<u32>), map: &mu
         // The subset's vertices move independently: a range of them per core, each with its
         // own targets (a column of the product is the same alone or among others).
         let moved = crate::parallel::chunks(sub.len(), |range| {
-            let t = if whole { targets(Err(range.clone()), &c) } else { targets(Ok(&sub[range.clone()]), &c) };
+            let t = if whole { targets_in(range.clone(), &c) } else { targets_of(&sub[range.clone()], &c) };
             range.enumerate().map(|(i, r)| super::greedy_descent(adjacency, map[sub[r]], |u| dist(u, t.col_as_slice(i))).0).collect::<Vec<usize>>()
         });
         for (&v, w) in sub.iter().zip(moved.into_iter().flatten()) {
@@ -114,7 +108,7 @@ pub fn zoomout_with(zb: &ZoomBasis, adjacency: &(Vec<usize>, Vec<u32>), map: &mu
         }
         if k >= kmax && sub.len() < n {
             // Last iteration on a large mesh: every other vertex, breadth-first from the subset.
-            let t = targets(Err(0..n), &c);
+            let t = targets_in(0..n, &c);
             super::breadth_first(adjacency, sub, |v, u| {
                 let target = t.col_as_slice(u);
                 let start = if dist(map[v], target) < dist(map[u], target) { map[v] } else { map[u] };
