@@ -101,7 +101,8 @@ pub fn zoomout_with(zb: &ZoomBasis, adjacency: &(Vec<usize>, Vec<u32>), map: &mu
         // own targets (a column of the product is the same alone or among others).
         let moved = crate::parallel::chunks(sub.len(), |range| {
             let t = if whole { targets_in(range.clone(), &c) } else { targets_of(&sub[range.clone()], &c) };
-            range.enumerate().map(|(i, r)| super::greedy_descent(adjacency, map[sub[r]], |u| dist(u, t.col_as_slice(i))).0).collect::<Vec<usize>>()
+            let starts: Vec<usize> = range.map(|r| map[sub[r]]).collect();
+            crate::spectral::kernels::dispatch(Descents { adjacency, rows, stride, targets: &t, starts: &starts })
         });
         for (&v, w) in sub.iter().zip(moved.into_iter().flatten()) {
             map[v] = w;
@@ -120,5 +121,50 @@ pub fn zoomout_with(zb: &ZoomBasis, adjacency: &(Vec<usize>, Vec<u32>), map: &mu
         }
         // Grow by `step` or 15%, whichever is more: the cost per step is O(n·k²).
         k = (k + step).max(k * 23 / 20).min(kmax);
+    }
+}
+
+/// Greedy descents of the point map, one per column of `targets` (`Φ_k(v) C_k`, `k` its rows)
+/// from `starts`, in one SIMD dispatch (see [`super::squared_distance_in`]); the same
+/// results as [`super::greedy_descent`] on [`super::squared_distance`].
+struct Descents<'a> {
+    adjacency: &'a (Vec<usize>, Vec<u32>),
+    rows: &'a [f64],
+    stride: usize,
+    targets: &'a Mat<f64>,
+    starts: &'a [usize],
+}
+
+impl crate::spectral::kernels::Kernel for Descents<'_> {
+    type Output = Vec<usize>;
+    #[inline(always)]
+    fn run<S: pulp::Simd>(self, simd: S) -> Vec<usize> {
+        // The descent of `super::greedy_descent` written out: a closure would not be compiled
+        // with the kernel's instruction set.
+        let (rows, stride) = (self.rows, self.stride);
+        let (off, nbr) = (&self.adjacency.0, &self.adjacency.1);
+        let k = self.targets.nrows();
+        let mut out = Vec::with_capacity(self.starts.len());
+        for (i, &start) in self.starts.iter().enumerate() {
+            let target = self.targets.col_as_slice(i);
+            let mut w = start;
+            let mut c = super::squared_distance_in(simd, &rows[w * stride..w * stride + k], target);
+            loop {
+                let mut best = (w, c);
+                for &u in &nbr[off[w]..off[w + 1]] {
+                    let u = u as usize;
+                    let cu = super::squared_distance_in(simd, &rows[u * stride..u * stride + k], target);
+                    if cu < best.1 {
+                        best = (u, cu);
+                    }
+                }
+                if best.0 == w {
+                    break;
+                }
+                (w, c) = best;
+            }
+            out.push(w);
+        }
+        out
     }
 }
