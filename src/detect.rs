@@ -205,7 +205,16 @@ impl Detection {
 
 /// Runs the pipeline; `progress(fraction)` returning `false` cancels with
 /// [`crate::spectral::SpectralError::Cancelled`].
+///
+/// `progress` is called on the calling thread, in order, and its answer is awaited (a GUI's
+/// callback may only touch its widgets there); the pipeline itself runs on a thread of the
+/// worker pool ([`crate::parallel::on_pool`]).
 pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool) -> Result<Detection, Error> {
+    crate::parallel::on_pool(progress, |relay| pipeline(mesh, params, relay))
+}
+
+/// [`detect`] on the current thread.
+fn pipeline(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool) -> Result<Detection, Error> {
     let t_all = Instant::now();
     let mut timings = Timings::default();
     let cancelled = || Error::Spectral(crate::spectral::SpectralError::Cancelled);
