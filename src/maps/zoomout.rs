@@ -86,17 +86,25 @@ pub fn zoomout_with(zb: &ZoomBasis, adjacency: &(Vec<usize>, Vec<u32>), map: &mu
     let targets_in = |range: std::ops::Range<usize>, c: &Mat<f64>| product(c, all_phi.subrows(0, c.nrows()).subcols(range.start, range.len()));
     let targets_of = |vs: &[usize], c: &Mat<f64>| product(c, Mat::<f64>::from_fn(c.nrows(), vs.len(), |p, r| rows[vs[r] * stride + p]).as_ref());
     let whole = sub.len() == n;
-    let mut gather = vec![0.0; sub.len() * kmax];
+    // C is summed over two fixed halves of the subset, one per core (the same sums on one
+    // core: the result does not depend on the number of cores); it was a third of a ZoomOut.
+    let half = sub.len() / 2;
+    let (mut gather_a, mut gather_b) = (vec![0.0; half * kmax], vec![0.0; (sub.len() - half) * kmax]);
     loop {
         // C_k = (M Φ_k)ᵀ Φ_k[T] over the subset; Φ_k[T] gathered a row (one vertex's
         // coefficients, contiguous) at a time.
-        for (r, &v) in sub.iter().enumerate() {
-            let w = map[v];
-            gather[r * k..(r + 1) * k].copy_from_slice(&rows[w * stride..w * stride + k]);
-        }
-        let phit = MatRef::from_row_major_slice(&gather[..sub.len() * k], sub.len(), k);
-        let mut c = Mat::<f64>::zeros(k, k);
-        faer::linalg::matmul::matmul(c.as_mut(), Accum::Replace, mphi.as_ref().subcols(0, k).transpose(), phit, 1.0, Par::Seq);
+        let part = |r0: usize, part: &[usize], gather: &mut [f64]| -> Mat<f64> {
+            for (r, &v) in part.iter().enumerate() {
+                let w = map[v];
+                gather[r * k..(r + 1) * k].copy_from_slice(&rows[w * stride..w * stride + k]);
+            }
+            let phit = MatRef::from_row_major_slice(&gather[..part.len() * k], part.len(), k);
+            let mut c = Mat::<f64>::zeros(k, k);
+            faer::linalg::matmul::matmul(c.as_mut(), Accum::Replace, mphi.as_ref().subrows(r0, part.len()).subcols(0, k).transpose(), phit, 1.0, Par::Seq);
+            c
+        };
+        let (ca, cb) = crate::parallel::join(|| part(0, &sub[..half], &mut gather_a), || part(half, &sub[half..], &mut gather_b));
+        let c = ca + cb;
         // The subset's vertices move independently: a range of them per core, each with its
         // own targets (a column of the product is the same alone or among others).
         let moved = crate::parallel::chunks(sub.len(), |range| {
