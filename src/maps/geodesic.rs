@@ -422,21 +422,25 @@ pub fn try_polish(ctx: &Context<'_>, geodesics: &Geodesics, m: &DenseMap, sample
         let profile = &profiles[v * k..v * k + profile_len[v]];
         let c = |w: usize| pairs.cost(profile, w);
         let near = profile.iter().fold(profile[0], |b, &p| if p.1 < b.1 { p } else { b }).0;
+        // The best start; a candidate equal to the current one has its cost (neighbours often
+        // share an image), and the descent starts from the known cost.
         let mut start = (image[v], c(image[v]));
         let near_image = pairs.pair(near).1;
-        let cn = c(near_image);
-        if cn < start.1 {
-            start = (near_image, cn);
+        if near_image != start.0 {
+            let cn = c(near_image);
+            if cn < start.1 {
+                start = (near_image, cn);
+            }
         }
         for &u in ctx.neighbours(v) {
-            if done[u as usize] {
+            if done[u as usize] && image[u as usize] != start.0 {
                 let cu = c(image[u as usize]);
                 if cu < start.1 {
                     start = (image[u as usize], cu);
                 }
             }
         }
-        let (w, cw) = super::descend_by(ctx, start.0, c);
+        let (w, cw) = super::descend_from(ctx, start, c);
         image[v] = w;
         mismatch[v] = cw;
         done[v] = true;

@@ -353,8 +353,13 @@ pub(crate) fn breadth_first(adjacency: &(Vec<usize>, Vec<u32>), roots: &[usize],
 /// Greedy descent of `cost` on the mesh graph (CSR `adjacency`) from `start`: moves to the best
 /// neighbour while it improves. Returns the vertex and its cost.
 pub(crate) fn greedy_descent(adjacency: &(Vec<usize>, Vec<u32>), start: usize, mut cost: impl FnMut(usize) -> f64) -> (usize, f64) {
-    let mut w = start;
-    let mut c = cost(w);
+    let c = cost(start);
+    greedy_descent_from(adjacency, (start, c), cost)
+}
+
+/// [`greedy_descent`] from a start whose cost `cost(start.0) = start.1` is known already.
+pub(crate) fn greedy_descent_from(adjacency: &(Vec<usize>, Vec<u32>), start: (usize, f64), mut cost: impl FnMut(usize) -> f64) -> (usize, f64) {
+    let (mut w, mut c) = start;
     loop {
         let mut best = (w, c);
         for &u in &adjacency.1[adjacency.0[w]..adjacency.0[w + 1]] {
@@ -375,6 +380,11 @@ fn descend_by(ctx: &Context<'_>, start: usize, cost: impl FnMut(usize) -> f64) -
     greedy_descent(&ctx.adjacency, start, cost)
 }
 
+/// [`descend_by`] from a start of known cost.
+fn descend_from(ctx: &Context<'_>, start: (usize, f64), cost: impl FnMut(usize) -> f64) -> (usize, f64) {
+    greedy_descent_from(&ctx.adjacency, start, cost)
+}
+
 /// Descents started from the [`STARTS`] best vertices of the coarse subset `ctx.search`; the
 /// best end. Several starts keep narrow basins (the robust mismatch has them) reachable from
 /// a sparse subset.
@@ -387,7 +397,7 @@ fn multi_start(ctx: &Context<'_>, mut cost: impl FnMut(usize) -> f64) -> usize {
     scored.select_nth_unstable_by(keep - 1, |a, b| a.0.total_cmp(&b.0));
     scored[..keep]
         .iter()
-        .map(|&(_, w)| descend_by(ctx, w, &mut cost))
+        .map(|&(c, w)| descend_from(ctx, (w, c), &mut cost))
         .fold((0, f64::INFINITY), |b, c| if c.1 < b.1 { c } else { b })
         .0
 }
@@ -654,17 +664,19 @@ fn profile_images(
             let mut cost = |w: usize| if robust { robust_mismatch(&profile, &dst, w, &mut scratch) } else { mismatch(&profile, &dst, w) };
             // Start: the previous round's image, else the best strided vertex (coarse search),
             // or the candidate's own target if x is an anchor and that fits better.
-            let mut start = match previous[si] {
+            let start = match previous[si] {
                 Some(w) => w,
                 None if robust => robust_multi_start(ctx, &profile, &search_rows, &mut search_scratch, &mut cost),
                 None => multi_start(ctx, &mut cost),
             };
+            let mut start = (start, cost(start));
             if let Some(&(_, t)) = anchors.iter().find(|a| a.0 == x) {
-                if cost(t) < cost(start) {
-                    start = t;
+                let ct = cost(t);
+                if ct < start.1 {
+                    start = (t, ct);
                 }
             }
-            descend_by(ctx, start, &mut cost)
+            descend_from(ctx, start, &mut cost)
         });
         let mut next = Vec::new();
         let mut used = std::collections::HashSet::new();
