@@ -140,20 +140,24 @@ pub fn vote(
     let general = BitRows::new(good_pairs, |a, b| consistent(pairs[a], pairs[b]));
     let involutive = BitRows::new(good_pairs, |a, b| consistent_involution(pairs[a], pairs[b]));
     // Votes (paper §4.3): both criteria, both orientations of the voter.
-    let votes: Vec<usize> = pairs[..good_pairs]
-        .iter()
-        .map(|&(x, xp)| {
-            pairs[..good_pairs]
-                .iter()
-                .filter(|&&(y, yp)| (y, yp) != (x, xp) && y != x)
-                .filter(|&&(y, yp)| {
-                    let c1 = (dist[(x, y)] - dist[(xp, yp)]).abs() < eps;
-                    let c2 = (dist[(x, yp)] - dist[(xp, y)]).abs() < eps;
-                    c1 && c2
-                })
-                .count()
-        })
-        .collect();
+    // A voter's count is independent of the others': ranges of them on all cores.
+    let votes: Vec<usize> = crate::parallel::chunks(good_pairs, |range| {
+        pairs[range]
+            .iter()
+            .map(|&(x, xp)| {
+                pairs[..good_pairs]
+                    .iter()
+                    .filter(|&&(y, yp)| (y, yp) != (x, xp) && y != x)
+                    .filter(|&&(y, yp)| {
+                        let c1 = (dist[(x, y)] - dist[(xp, yp)]).abs() < eps;
+                        let c2 = (dist[(x, yp)] - dist[(xp, y)]).abs() < eps;
+                        c1 && c2
+                    })
+                    .count()
+            })
+            .collect::<Vec<usize>>()
+    })
+    .concat();
     let mut order: Vec<usize> = (0..good_pairs).collect();
     order.sort_by(|&a, &b| votes[b].cmp(&votes[a]).then(wd[(pairs[a].0, pairs[a].1)].total_cmp(&wd[(pairs[b].0, pairs[b].1)])));
 
