@@ -4,11 +4,18 @@
 //! vertices), and results never depend on the number of cores: every primitive returns the
 //! serial result, in order.
 //!
-//! Why a pool: the maps stage has hundreds of parallel regions of 0.1–1 ms. Spawning scoped
+//! Why a pool: the maps stage has hundreds of parallel regions of 0.1–3 ms. Spawning scoped
 //! threads for each cost about 80 µs per region on the 2-core VM (a spawn and a futex wake-up
-//! of the other virtual CPU); rayon's idle workers are woken in 10–20 µs, and nested regions
-//! (a vertex loop inside a candidate's map, itself one of several on all cores) cost next to
-//! nothing when the cores are busy: the inner work just runs where it is.
+//! of the other virtual CPU), and nested regions (a vertex loop inside a candidate's map,
+//! itself one of several on all cores) cost next to nothing when the cores are busy: the inner
+//! work just runs where it is.
+//!
+//! Waking a pool thread that went to sleep is another matter on a VM: its virtual CPU is
+//! parked, and the hypervisor takes 0.3–4 ms to run it again, longer than most regions. So
+//! [`detect`](crate::detect()) runs the pipeline *on* a pool thread ([`on_pool`]: a region
+//! starts on the thread that enters it instead of waiting for a sleeping one to take it) and
+//! keeps the other pool threads spinning meanwhile ([`spinner`]). Both change when work runs,
+//! never what it computes.
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
