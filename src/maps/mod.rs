@@ -300,9 +300,9 @@ impl crate::spectral::kernels::Kernel for SquaredDistance<'_> {
     }
 }
 
-/// [`squared_distance`] inside a kernel already dispatched to `simd` (a loop of many
-/// distances, like a batch of descents, dispatches once: the dispatch cost a third of a
-/// 100-coefficient distance).
+/// [`squared_distance`] inside a kernel already dispatched to `simd`: a loop of many
+/// distances, like a batch of ZoomOut's descents, dispatches once instead of once per distance
+/// (refinement 4% faster at 5k).
 #[inline(always)]
 pub(crate) fn squared_distance_in<S: pulp::Simd>(simd: S, a: &[f64], b: &[f64]) -> f64 {
     let mut acc = [0.0f64; 8];
