@@ -69,7 +69,7 @@ pub(crate) fn join<A: Send, B: Send>(a: impl FnOnce() -> A + Send, b: impl FnOnc
 /// 2-core VM waking a parked virtual CPU takes 0.3–4 ms, and the maps stage enters hundreds of
 /// regions. From a pool thread the region's first half runs at once where it is, and the
 /// other core joins when it is awake (the whole detection 6–9% faster at 5k). While `work`
-/// runs, the pool's other threads stay awake ([`spinner`]; 5% more). Callers already on a
+/// runs, the pool's other threads stay awake ([`spinner`]; 2–5% more). Callers already on a
 /// pool thread, and machines with one core, run `work` directly.
 pub(crate) fn on_pool<R: Send>(progress: &mut dyn FnMut(f64) -> bool, work: impl FnOnce(&mut dyn FnMut(f64) -> bool) -> R + Send) -> R {
     if cores() <= 1 || rayon::current_thread_index().is_some() {
@@ -85,15 +85,15 @@ pub(crate) fn on_pool<R: Send>(progress: &mut dyn FnMut(f64) -> bool, work: impl
         scope.spawn(move |_| {
             let stop = AtomicBool::new(false);
             let result = rayon::in_place_scope(|inner| {
-                let home = rayon::current_thread_index();
-                if spin_wanted() {
-                    for _ in 1..rayon::current_num_threads() {
-                        let stop = &stop;
-                        inner.spawn(move |s| spinner(s, stop, home));
-                    }
-                }
-                // The spinners stop when `work` ends, by a panic too (the scope waits for them).
+                // This thread runs the pipeline (no spinner here), and the spinners stop when
+                // `work` ends, by a panic too (the scope waits for them).
+                let _pipeline = Pipeline::enter();
                 let _stop = Raised(&stop);
+                if spin_wanted() {
+                    // One spinner per pool thread (this one's ends at once).
+                    let stop = &stop;
+                    inner.spawn_broadcast(move |s, _| spinner(s, stop));
+                }
                 let mut relay = |f: f64| to_caller.send(Message::Progress(f)).is_ok() && answers.recv().unwrap_or(false);
                 work(&mut relay)
             });
@@ -129,31 +129,60 @@ fn spin_wanted() -> bool {
 thread_local! {
     /// Whether this thread is running a [`spinner`] already.
     static SPINNING: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+    /// Whether this thread is running the work of an [`on_pool`].
+    static PIPELINE: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
 }
+
+/// How long a [`spinner`] spins before it hands itself back to its thread's queue.
+const SPIN_TURN: std::time::Duration = std::time::Duration::from_micros(100);
 
 /// Keeps a pool thread awake until `stop`: it takes every job the moment one is queued
 /// (`rayon::yield_now`) and spins in between, so the parallel regions of the pipeline (most
 /// of 0.1–3 ms) find a core that is running instead of a parked virtual CPU to wake (0.3–4 ms
 /// on the 2-core VM). The results do not change: jobs run where they would, only sooner.
 ///
-/// A spinner taken by the thread of the pipeline itself (`home`, while it waits for a job of
-/// its own) is handed back to the pool instead: spinning there would wait for the pipeline to
-/// end, that is for itself. One taken by a thread that spins already ends (no nesting).
-fn spinner<'s>(scope: &rayon::Scope<'s>, stop: &'s AtomicBool, home: Option<usize>) {
-    if stop.load(Ordering::Relaxed) || SPINNING.get() {
-        return;
-    }
-    if rayon::current_thread_index() == home {
-        scope.spawn(move |s| spinner(s, stop, home));
+/// Deadlock-free by construction:
+/// - a spinner spins for one [`SPIN_TURN`] at most, then queues itself again on its thread
+///   and returns. A thread may take a spinner while it waits inside some job `J` (rayon runs
+///   other jobs while a join waits); spinning there until the pipeline ends could wait for
+///   `J`, that is for itself. After a turn `J` continues;
+/// - a spinner never runs on a thread that runs a pipeline ([`PIPELINE`]: it would delay it)
+///   nor inside another spinner ([`SPINNING`]): it ends at once there.
+fn spinner<'s>(scope: &rayon::Scope<'s>, stop: &'s AtomicBool) {
+    if stop.load(Ordering::Relaxed) || SPINNING.get() || PIPELINE.get() {
         return;
     }
     SPINNING.set(true);
+    let end = std::time::Instant::now() + SPIN_TURN;
+    let mut round = 0u32;
     while !stop.load(Ordering::Relaxed) {
         if rayon::yield_now() != Some(rayon::Yield::Executed) {
             std::hint::spin_loop();
         }
+        round = round.wrapping_add(1);
+        if round % 64 == 0 && std::time::Instant::now() >= end {
+            break;
+        }
     }
     SPINNING.set(false);
+    if !stop.load(Ordering::Relaxed) {
+        scope.spawn(move |s| spinner(s, stop));
+    }
+}
+
+/// Marks this thread as running a pipeline ([`PIPELINE`]) until dropped.
+struct Pipeline(bool);
+
+impl Pipeline {
+    fn enter() -> Pipeline {
+        Pipeline(PIPELINE.replace(true))
+    }
+}
+
+impl Drop for Pipeline {
+    fn drop(&mut self) {
+        PIPELINE.set(self.0);
+    }
 }
 
 /// Raises its flag when dropped.
@@ -215,6 +244,32 @@ mod tests {
         let serial: usize = items.iter().map(|&x| (0..100).map(|y| x ^ y).sum::<usize>()).sum();
         assert_eq!(sum, serial);
         assert_eq!(nested, (1, 2));
+    }
+
+    /// Pipelines started from several threads at once share the pool and all finish (a
+    /// spinner must never wait for a job below it on its own thread), with the serial results.
+    #[test]
+    fn concurrent_pipelines_finish() {
+        let items: Vec<usize> = (0..2000).collect();
+        let serial: usize = items.iter().map(|&x| (0..300).map(|y| x ^ y).sum::<usize>()).sum();
+        let run = || {
+            on_pool(&mut |_| true, |relay| {
+                let mut total = 0;
+                for round in 0..20 {
+                    relay(round as f64 / 20.0);
+                    total = map(&items, |&x| chunks(300, |r| r.map(|y| x ^ y).sum::<usize>()).into_iter().sum::<usize>()).into_iter().sum::<usize>();
+                    let (a, b) = join(|| chunks(1000, |r| r.len()), || map(&[1usize, 2], |x| x + 1));
+                    assert_eq!((a.iter().sum::<usize>(), b), (1000, vec![2, 3]));
+                }
+                total
+            })
+        };
+        std::thread::scope(|scope| {
+            let threads: Vec<_> = (0..3).map(|_| scope.spawn(run)).collect();
+            for t in threads {
+                assert_eq!(t.join().expect("a pipeline thread"), serial);
+            }
+        });
     }
 
     /// A panic in the work reaches the caller (and the spinners stop: the call returns).
