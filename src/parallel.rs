@@ -69,7 +69,7 @@ pub(crate) fn join<A: Send, B: Send>(a: impl FnOnce() -> A + Send, b: impl FnOnc
 /// 2-core VM waking a parked virtual CPU takes 0.3–4 ms, and the maps stage enters hundreds of
 /// regions. From a pool thread the region's first half runs at once where it is, and the
 /// other core joins when it is awake (the whole detection 6–9% faster at 5k). While `work`
-/// runs, the pool's other threads stay awake ([`spinner`]; 2–5% more). Callers already on a
+/// runs, the pool's other threads stay awake ([`spinner`]; 0–5% more). Callers already on a
 /// pool thread, and machines with one core, run `work` directly.
 pub(crate) fn on_pool<R: Send>(progress: &mut dyn FnMut(f64) -> bool, work: impl FnOnce(&mut dyn FnMut(f64) -> bool) -> R + Send) -> R {
     if cores() <= 1 || rayon::current_thread_index().is_some() {
