@@ -1,0 +1,50 @@
+#!/usr/bin/env python3
+"""Check that two intrinsym builds detect the same symmetries on TOSCA and SHREC'16.
+
+    python3 bench/same_outputs.py OLD_BIN NEW_BIN
+
+Runs `intrinsym detect SHAPE --json` with both binaries on every shape of ../shared/data
+(SHREC'16 kids with --allow-non-manifold) and compares the JSON `symmetries` (every map,
+confidence, functional map, complexity, ...) exactly. Prints one line per shape and exits
+with status 1 when any differs. A speed change that should not change results must pass this
+(and `intrinsym-eval --generated` must print the same table).
+"""
+import glob
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+DATA = os.path.join(HERE, "..", "..", "shared", "data")
+
+
+def symmetries(binary, shape, out):
+    extra = ["--allow-non-manifold"] if "shrec16" in shape else []
+    subprocess.run([binary, "detect", shape, "--json", out] + extra, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=True)
+    with open(out) as f:
+        return json.load(f)["symmetries"]
+
+
+def main():
+    if len(sys.argv) != 3:
+        sys.exit(__doc__)
+    old, new = sys.argv[1:]
+    shapes = sorted(glob.glob(os.path.join(DATA, "tosca", "*.off"))) + sorted(glob.glob(os.path.join(DATA, "shrec16_kids", "*.off")))
+    if not shapes:
+        sys.exit(f"no shapes in {DATA}")
+    different = 0
+    with tempfile.TemporaryDirectory() as tmp:
+        out = os.path.join(tmp, "out.json")
+        for shape in shapes:
+            a, b = symmetries(old, shape, out), symmetries(new, shape, out)
+            same = a == b
+            different += not same
+            print(f"{os.path.basename(shape)}: {'same' if same else 'DIFFERENT'} ({len(a)} and {len(b)} symmetries)")
+    print(f"{different} of {len(shapes)} shapes differ")
+    sys.exit(1 if different else 0)
+
+
+if __name__ == "__main__":
+    main()
