@@ -358,9 +358,7 @@ pub fn try_polish(ctx: &Context<'_>, geodesics: &Geodesics, m: &DenseMap, sample
     let rematched = crate::parallel::map(&untrusted, |&i| {
         let mut profile = Vec::new();
         super::nearest_profile(|j| first.from_source(src[i], j), trusted.iter().copied(), k, &mut profile);
-        let c = |w: usize| first.cost(&profile, w);
-        let w = super::multi_start(ctx, c);
-        super::descend_by(ctx, w, c)
+        super::multi_start(ctx, |w| first.cost(&profile, w))
     });
     for (&i, (w, cw)) in untrusted.iter().zip(rematched) {
         if cw <= tol {

@@ -375,31 +375,25 @@ pub(crate) fn greedy_descent_from(adjacency: &(Vec<usize>, Vec<u32>), start: (us
     }
 }
 
-/// Greedy descent of `cost` on the mesh graph from `start`.
-fn descend_by(ctx: &Context<'_>, start: usize, cost: impl FnMut(usize) -> f64) -> (usize, f64) {
-    greedy_descent(&ctx.adjacency, start, cost)
-}
-
-/// [`descend_by`] from a start of known cost.
+/// [`greedy_descent`] on `ctx`'s mesh graph from a start of known cost.
 fn descend_from(ctx: &Context<'_>, start: (usize, f64), cost: impl FnMut(usize) -> f64) -> (usize, f64) {
     greedy_descent_from(&ctx.adjacency, start, cost)
 }
 
 /// Descents started from the [`STARTS`] best vertices of the coarse subset `ctx.search`; the
-/// best end. Several starts keep narrow basins (the robust mismatch has them) reachable from
-/// a sparse subset.
-fn multi_start(ctx: &Context<'_>, mut cost: impl FnMut(usize) -> f64) -> usize {
+/// best end and its cost (a local minimum: descending from it again stays there). Several
+/// starts keep narrow basins (the robust mismatch has them) reachable from a sparse subset.
+fn multi_start(ctx: &Context<'_>, mut cost: impl FnMut(usize) -> f64) -> (usize, f64) {
     let mut scored: Vec<(f64, usize)> = ctx.search.iter().map(|&w| (cost(w), w)).collect();
     let keep = STARTS.min(scored.len());
     if keep == 0 {
-        return 0;
+        return (0, cost(0));
     }
     scored.select_nth_unstable_by(keep - 1, |a, b| a.0.total_cmp(&b.0));
     scored[..keep]
         .iter()
         .map(|&(c, w)| descend_from(ctx, (w, c), &mut cost))
         .fold((0, f64::INFINITY), |b, c| if c.1 < b.1 { c } else { b })
-        .0
 }
 
 /// Descents per coarse search ([`multi_start`]).
@@ -423,16 +417,17 @@ fn search_rows(ctx: &Context<'_>, dst: &Mat<f64>) -> Vec<f64> {
 /// so every `t` bounds it from below, without a selection; `t = 2τ` and `4τ` (`τ` the current
 /// `STARTS`-th best mismatch) exclude nearly every vertex of the coarse subset. The selection
 /// this skips was the largest single cost of anchor refinement.
-fn robust_multi_start(ctx: &Context<'_>, profile: &[(usize, f64)], rows: &[f64], scratch: &mut Vec<u64>, mut cost: impl FnMut(usize) -> f64) -> usize {
+fn robust_multi_start(ctx: &Context<'_>, profile: &[(usize, f64)], rows: &[f64], scratch: &mut Vec<u64>, mut cost: impl FnMut(usize) -> f64) -> (usize, f64) {
     let p = profile.len();
     debug_assert!(profile.iter().enumerate().all(|(i, a)| a.0 == i) && rows.len() == ctx.search.len() * p);
     if p == 0 || ctx.search.is_empty() {
-        return 0;
+        return (0, cost(0));
     }
     let source: Vec<f64> = profile.iter().map(|a| a.1).collect();
     let mut best = Vec::with_capacity(STARTS + 1);
     crate::spectral::kernels::dispatch(RobustScan { source: &source, rows, search: &ctx.search, best: &mut best, scratch });
-    best.iter().map(|&(_, w)| descend_by(ctx, w, &mut cost)).fold((0, f64::INFINITY), |b, c| if c.1 < b.1 { c } else { b }).0
+    // The scan's mismatch is the cost's own (the same differences, the same trimmed mean).
+    best.iter().map(|&(c, w)| descend_from(ctx, (w, c), &mut cost)).fold((0, f64::INFINITY), |b, c| if c.1 < b.1 { c } else { b })
 }
 
 /// The scan of [`robust_multi_start`]: the best [`STARTS`] `(mismatch, vertex)` of the coarse
@@ -498,9 +493,9 @@ impl crate::spectral::kernels::Kernel for RobustScan<'_> {
     }
 }
 
-/// Greedy descent of the mismatch on the mesh graph from `start`.
-fn descend(ctx: &Context<'_>, profile: &[(usize, f64)], dst: &Mat<f64>, start: usize) -> (usize, f64) {
-    descend_by(ctx, start, |w| mismatch(profile, dst, w))
+/// Greedy descent of the mismatch on the mesh graph from `start` (a vertex and its mismatch).
+fn descend(ctx: &Context<'_>, profile: &[(usize, f64)], dst: &Mat<f64>, start: (usize, f64)) -> (usize, f64) {
+    descend_from(ctx, start, |w| mismatch(profile, dst, w))
 }
 
 /// Profile-matches a candidate given as vertex-level anchors `(source, target)` (see the module
@@ -664,12 +659,11 @@ fn profile_images(
             let mut cost = |w: usize| if robust { robust_mismatch(&profile, &dst, w, &mut scratch) } else { mismatch(&profile, &dst, w) };
             // Start: the previous round's image, else the best strided vertex (coarse search),
             // or the candidate's own target if x is an anchor and that fits better.
-            let start = match previous[si] {
-                Some(w) => w,
+            let mut start = match previous[si] {
+                Some(w) => (w, cost(w)),
                 None if robust => robust_multi_start(ctx, &profile, &search_rows, &mut search_scratch, &mut cost),
                 None => multi_start(ctx, &mut cost),
             };
-            let mut start = (start, cost(start));
             if let Some(&(_, t)) = anchors.iter().find(|a| a.0 == x) {
                 let ct = cost(t);
                 if ct < start.1 {
@@ -723,7 +717,7 @@ fn profile_images(
                 }
             }
         }
-        best[v] = descend(ctx, profile, &ddst, start).0;
+        best[v] = descend(ctx, profile, &ddst, (start, start_c)).0;
         for &u in ctx.neighbours(v) {
             if !seen[u as usize] {
                 seen[u as usize] = true;
