@@ -19,6 +19,7 @@ use crate::cluster;
 use crate::descriptors::{wks, WksParams};
 use crate::distance::biharmonic;
 use crate::error::Error;
+use crate::judge::{self, Judge, JudgeParams, Verdict};
 use crate::maps::{self, proxy::Proxy, Context, MapParams};
 use crate::mesh::Mesh;
 use crate::sampling::farthest_point;
@@ -67,6 +68,8 @@ pub struct Params {
     pub max_symmetries: usize,
     /// Largest rotation order looked for (default 12).
     pub max_order: usize,
+    /// The judge that ranks and selects maps ([`crate::judge`]).
+    pub judge: JudgeParams,
 }
 
 impl Default for Params {
@@ -87,6 +90,7 @@ impl Default for Params {
             max_refinements: 4,
             max_symmetries: 32,
             max_order: 12,
+            judge: JudgeParams::default(),
         }
     }
 }
@@ -137,6 +141,9 @@ pub struct Symmetry {
     pub group: usize,
     /// Mean `|d(x,y) − d(Tx,Ty)|` over anchor pairs / diameter.
     pub distortion: f64,
+    /// The judge's verdict ([`crate::judge`]): orientation reversal, fixed fraction, coverage
+    /// and the score symmetries are ranked by.
+    pub verdict: Verdict,
 }
 
 /// Seconds per stage.
@@ -278,6 +285,15 @@ fn pipeline(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool)
         None => (&emb, &basis, Context::new(mesh, &emb, &desc, vinfo.diameter, &params.maps)),
     };
     ctx.basis = Some(basis);
+    // The judge on the maps' domain: the mesh, or the proxy graph with the mesh's normals at
+    // its seeds.
+    let scale = mesh.area().sqrt();
+    let normals = judge::vertex_normals(mesh);
+    let domain_judge = match &proxy {
+        Some(p) => Judge::new(&p.positions, p.seeds.iter().map(|&s| normals[s]).collect(), &p.adjacency, scale, &params.judge),
+        None => Judge::new(&mesh.vertices, normals.clone(), &ctx.adjacency, scale, &params.judge),
+    };
+    ctx.judge = Some((domain_judge, probes.to_vec(), params.max_distortion));
     // Vertices of the domain.
     let nd = ctx.num_vertices();
     let agree_tol = params.maps.accept * 2.0 * vinfo.diameter;
@@ -286,15 +302,15 @@ fn pipeline(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool)
         seed: (usize, usize),
         distortion: f64,
         complexity: f64,
+        verdict: Verdict,
     }
-    // Of two versions of one symmetry keep, among global maps, the one with the lower
-    // complexity (the more diagonal functional map: an isometry of a shape with a simple
-    // spectrum maps eigenfunctions to ± themselves; on TOSCA the true mirror scores 0.1–0.3,
-    // competing near-symmetries like a human's front↔back flip ≥ 0.9); otherwise the larger
-    // region, then the lower distortion.
+    // Of two versions of one symmetry keep, among global maps, the one the judge scores
+    // higher (`crate::judge`: a half-identity, more diagonal than the true mirror, loses);
+    // otherwise the larger region, then the lower distortion.
+    let verdict = |m: &maps::DenseMap| ctx.verdict(&m.map).unwrap_or_default();
     let better = |a: &Found, than: &Found| {
         if a.dense.global && than.dense.global {
-            a.complexity < than.complexity
+            a.verdict.score > than.verdict.score
         } else {
             (a.dense.region_size, -a.distortion) > (than.dense.region_size, -than.distortion)
         }
@@ -421,7 +437,8 @@ fn pipeline(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool)
             continue;
         }
         let complexity = characterize::complexity(&maps::functional_map(basis, &dense.map, params.maps.fmap_size), params.complexity_width);
-        let candidate = Found { dense, seed, distortion, complexity };
+        let verdict = verdict(&dense);
+        let candidate = Found { dense, seed, distortion, complexity, verdict };
         match same_as(&candidate.dense, &found, 0.5) {
             Some(i) if !better(&candidate, &found[i]) => {}
             Some(i) => found[i] = candidate,
@@ -471,6 +488,7 @@ fn pipeline(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool)
                 // The map changed: so did its distortion and its functional map.
                 f.distortion = characterize::sample_distortion(&f.dense.map, probes, emb, vinfo.diameter);
                 f.complexity = characterize::complexity(&maps::functional_map(basis, &f.dense.map, params.maps.fmap_size), params.complexity_width);
+                f.verdict = verdict(&f.dense);
             }
         }
     }
@@ -528,7 +546,8 @@ fn pipeline(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool)
                 let known = same_as(&dense, &found, 0.5);
                 let complexity = characterize::complexity(&maps::functional_map(basis, &dense.map, params.maps.fmap_size), params.complexity_width);
                 let seed = (found[first].seed.0, dense.image[found[first].seed.0]);
-                let composed = Found { dense, seed, distortion, complexity };
+                let verdict = verdict(&dense);
+                let composed = Found { dense, seed, distortion, complexity, verdict };
                 match known {
                     Some(i) if found[i].dense.global && !better(&composed, &found[i]) => {}
                     Some(i) => found[i] = composed,
@@ -555,17 +574,12 @@ fn pipeline(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool)
     timings.maps = t.elapsed().as_secs_f64();
 
     let t = Instant::now();
-    // Strongest first: global maps by complexity (the most isometric first), then partial
-    // maps by region size and distortion.
-    found.sort_by(|a, b| {
-        b.dense.global.cmp(&a.dense.global).then_with(|| {
-            if a.dense.global {
-                a.complexity.total_cmp(&b.complexity)
-            } else {
-                b.dense.region_size.cmp(&a.dense.region_size).then(a.distortion.total_cmp(&b.distortion))
-            }
-        })
-    });
+    // The judge on the mesh (every map is now defined on its vertices): strongest first.
+    let mesh_judge = Judge::new(&mesh.vertices, judge::vertex_normals(mesh), &mesh.adjacency(), mesh.area().sqrt(), &params.judge);
+    for f in &mut found {
+        f.verdict = mesh_judge.judge(&f.dense.map, f.distortion, params.max_distortion);
+    }
+    found.sort_by(|a, b| b.verdict.score.total_cmp(&a.verdict.score));
     let order_tol = params.maps.accept * 2.0 * vinfo.diameter;
     let mut symmetries: Vec<Symmetry> = found
         .into_iter()
@@ -596,6 +610,7 @@ fn pipeline(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool)
                 complexity,
                 group: 0,
                 distortion: f.distortion,
+                verdict: f.verdict,
             }
         })
         .collect();

@@ -31,6 +31,7 @@ pub mod distance;
 pub mod error;
 pub mod eval;
 pub mod ffi;
+pub mod judge;
 pub mod maps;
 pub mod mesh;
 pub mod output;

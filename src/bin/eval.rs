@@ -1,7 +1,7 @@
 //! `intrinsym-eval`: the evaluation protocol of DESIGN.md on shapes with known symmetry.
 //!
 //! ```text
-//! intrinsym-eval [--data DIR] [--generated] [--only NAME] [--set KEY=VALUE]...
+//! intrinsym-eval [--data DIR] [--peer DIR] [--tsv FILE] [--symmetries FILE] [--generated] [--only NAME] [--set KEY=VALUE]...
 //! ```
 //! For every `NAME.off` with a `NAME.sym.txt` (two 0-based columns `x  sym_x`) under DIR
 //! (default `../shared/data`, searched recursively one level), runs detection with default
@@ -19,14 +19,25 @@ use intrinsym::shapes::{self, Pose};
 use intrinsym::{detect, eval, Mesh, MeshParams, Params};
 
 struct Row {
+    dataset: String,
     name: String,
     vertices: usize,
+    /// Best of the reported symmetries, at 0.05 and 0.10.
     acc05: f64,
     acc10: f64,
+    /// The first reported symmetry (what MeshLab colours by default).
+    first05: f64,
+    first10: f64,
+    /// The peer's map (pyFM), when one is cached.
+    peer: Option<(f64, f64)>,
     seconds: f64,
     found: usize,
     rank: usize,
 }
+
+/// Every reported symmetry of every shape with its accuracy and the judge's terms
+/// (`--symmetries FILE`): the data the judge's design is checked on.
+static SYMMETRY_ROWS: std::sync::Mutex<Vec<String>> = std::sync::Mutex::new(Vec::new());
 
 fn score(name: &str, mesh: &Mesh, truth: &[(usize, Vec<usize>)], params: &Params) -> Row {
     score_all(mesh, &[(name.to_string(), truth.to_vec())], params).remove(0)
@@ -72,10 +83,19 @@ fn score_all(mesh: &Mesh, truths: &[(String, Vec<(usize, Vec<usize>)>)], params:
         .iter()
         .map(|(name, truth)| {
             let mut best = (0.0, 0.0, 0usize);
+            let mut first = (0.0, 0.0);
             match &det {
                 Ok(d) => {
                     for (i, s) in d.symmetries.iter().enumerate() {
                         let a = eval::accuracy(mesh, &s.map, truth, &[0.05, 0.10]);
+                        let v = &s.verdict;
+                        SYMMETRY_ROWS.lock().unwrap().push(format!(
+                            "{name}\t{i}\t{:.4}\t{:.4}\t{}\t{}\t{:.4}\t{:.4}\t{:.4}\t{:.5}\t{:.4}\t{:.4}",
+                            a[0], a[1], s.kind.as_str(), s.order, v.reversal, v.fixed, v.coverage, s.distortion, s.complexity, v.score
+                        ));
+                        if i == 0 {
+                            first = (a[0], a[1]);
+                        }
                         if a[0] > best.0 || (a[0] == best.0 && a[1] > best.1) {
                             best = (a[0], a[1], i + 1);
                         }
@@ -83,9 +103,39 @@ fn score_all(mesh: &Mesh, truths: &[(String, Vec<(usize, Vec<usize>)>)], params:
                 }
                 Err(e) => eprintln!("{name}: {e}"),
             }
-            Row { name: name.clone(), vertices: mesh.num_vertices(), acc05: best.0, acc10: best.1, seconds, found, rank: best.2 }
+            Row {
+                dataset: String::new(),
+                name: name.clone(),
+                vertices: mesh.num_vertices(),
+                acc05: best.0,
+                acc10: best.1,
+                first05: first.0,
+                first10: first.1,
+                peer: None,
+                seconds,
+                found,
+                rank: best.2,
+            }
         })
         .collect()
+}
+
+/// Reads a cached peer map (`NAME.map`, one image vertex per input vertex) and scores it.
+fn score_peer(path: &Path, mesh: &Mesh, to_mesh: &[usize], truth: &[(usize, Vec<usize>)]) -> Option<(f64, f64)> {
+    let text = std::fs::read_to_string(path).ok()?;
+    let input: Vec<i64> = text.lines().map(|l| l.trim().parse::<i64>().unwrap_or(-1)).collect();
+    if input.len() != to_mesh.len() {
+        eprintln!("{}: {} entries for {} vertices, ignored", path.display(), input.len(), to_mesh.len());
+        return None;
+    }
+    let mut pred = vec![-1i64; mesh.num_vertices()];
+    for (v, &w) in input.iter().enumerate() {
+        if to_mesh[v] != usize::MAX && w >= 0 && (w as usize) < to_mesh.len() && to_mesh[w as usize] != usize::MAX {
+            pred[to_mesh[v]] = to_mesh[w as usize] as i64;
+        }
+    }
+    let a = eval::accuracy(mesh, &pred, truth, &[0.05, 0.10]);
+    Some((a[0], a[1]))
 }
 
 fn read_truth(path: &Path) -> Vec<(usize, Vec<usize>)> {
@@ -102,43 +152,140 @@ fn read_truth(path: &Path) -> Vec<(usize, Vec<usize>)> {
         .collect()
 }
 
+fn pct(x: f64) -> String {
+    format!("{:.1}%", 100.0 * x)
+}
+
+fn print_row(r: &Row) {
+    let peer = r.peer.map_or("–".to_string(), |p| pct(p.0));
+    println!(
+        "| {} | {} | {} | {} | {} | {} | {} | {:.2} | {} | {} |",
+        r.dataset,
+        r.name,
+        r.vertices,
+        pct(r.acc05),
+        pct(r.acc10),
+        pct(r.first05),
+        peer,
+        r.seconds,
+        r.found,
+        r.rank
+    );
+}
+
+/// The per-dataset summary: means of best, first and peer, shapes below 0.5, first = best.
+fn print_summary(rows: &[Row]) {
+    let mut sets: Vec<String> = rows.iter().map(|r| r.dataset.clone()).collect();
+    sets.dedup();
+    sets.push("all".into());
+    println!();
+    println!("| dataset | shapes | best @0.05 | first @0.05 | pyFM @0.05 | best @0.10 | first @0.10 | pyFM @0.10 | best < 0.5 | pyFM < 0.5 | first is best | mean time s |");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|");
+    for set in sets {
+        let rs: Vec<&Row> = rows.iter().filter(|r| set == "all" || r.dataset == set).collect();
+        let n = rs.len() as f64;
+        let mean = |f: &dyn Fn(&Row) -> f64| rs.iter().map(|r| f(r)).sum::<f64>() / n;
+        let peers: Vec<(f64, f64)> = rs.iter().filter_map(|r| r.peer).collect();
+        let peer = |k: usize| {
+            if peers.len() == rs.len() {
+                pct(peers.iter().map(|p| if k == 0 { p.0 } else { p.1 }).sum::<f64>() / n)
+            } else if peers.is_empty() {
+                "–".into()
+            } else {
+                format!("{} ({} of {})", pct(peers.iter().map(|p| if k == 0 { p.0 } else { p.1 }).sum::<f64>() / peers.len() as f64), peers.len(), rs.len())
+            }
+        };
+        // "first is best": the first reported symmetry within half a point of the best one.
+        let first_is_best = rs.iter().filter(|r| r.first05 + 0.005 >= r.acc05).count();
+        println!(
+            "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} of {} | {:.2} |",
+            set,
+            rs.len(),
+            pct(mean(&|r| r.acc05)),
+            pct(mean(&|r| r.first05)),
+            peer(0),
+            pct(mean(&|r| r.acc10)),
+            pct(mean(&|r| r.first10)),
+            peer(1),
+            rs.iter().filter(|r| r.acc05 < 0.5).count(),
+            if peers.is_empty() { "–".into() } else { peers.iter().filter(|p| p.0 < 0.5).count().to_string() },
+            first_is_best,
+            rs.len(),
+            mean(&|r| r.seconds)
+        );
+    }
+}
+
+/// Writes every row as tab-separated values (for comparing runs: `bench/compare_eval.py`).
+fn write_tsv(path: &Path, rows: &[Row]) -> std::io::Result<()> {
+    let mut out = String::from("dataset\tshape\tvertices\tbest05\tbest10\tfirst05\tfirst10\tpeer05\tpeer10\tseconds\tfound\trank\n");
+    for r in rows {
+        let (p5, p10) = r.peer.map_or((f64::NAN, f64::NAN), |p| p);
+        out += &format!(
+            "{}\t{}\t{}\t{:.4}\t{:.4}\t{:.4}\t{:.4}\t{:.4}\t{:.4}\t{:.3}\t{}\t{}\n",
+            r.dataset, r.name, r.vertices, r.acc05, r.acc10, r.first05, r.first10, p5, p10, r.seconds, r.found, r.rank
+        );
+    }
+    std::fs::write(path, out)
+}
+
+const USAGE: &str = "usage: intrinsym-eval [--data DIR] [--peer DIR] [--tsv FILE] [--symmetries FILE] [--generated] [--only NAME] [--set KEY=VALUE]...";
+
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     let mut data = PathBuf::from("../shared/data");
+    let mut peer_dir: Option<PathBuf> = std::env::var_os("HOME").map(|h| PathBuf::from(h).join(".cache/intrinsym/pyfm"));
+    let mut tsv: Option<PathBuf> = None;
+    let mut symmetries_tsv: Option<PathBuf> = None;
     let mut generated = false;
     let mut only: Option<String> = None;
     let mut params = Params::default();
     let mut i = 1;
+    let value = |i: usize| -> String {
+        args.get(i).cloned().unwrap_or_else(|| {
+            eprintln!("{USAGE} ({} wants a value)", args[i - 1]);
+            std::process::exit(2);
+        })
+    };
     while i < args.len() {
         match args[i].as_str() {
             "--data" => {
                 i += 1;
-                data = PathBuf::from(&args[i]);
+                data = PathBuf::from(value(i));
+            }
+            "--peer" => {
+                i += 1;
+                peer_dir = Some(PathBuf::from(value(i)));
+            }
+            "--tsv" => {
+                i += 1;
+                tsv = Some(PathBuf::from(value(i)));
+            }
+            "--symmetries" => {
+                i += 1;
+                symmetries_tsv = Some(PathBuf::from(value(i)));
             }
             "--generated" => generated = true,
             "--only" => {
                 i += 1;
-                only = Some(args[i].clone());
+                only = Some(value(i));
             }
             "--set" => {
                 i += 1;
-                if let Err(e) = args.get(i).ok_or_else(|| "--set wants KEY=VALUE".to_string()).and_then(|kv| set_param(&mut params, kv)) {
+                if let Err(e) = set_param(&mut params, &value(i)) {
                     eprintln!("intrinsym-eval: {e}");
                     std::process::exit(2);
                 }
             }
             other => {
-                eprintln!("usage: intrinsym-eval [--data DIR] [--generated] [--only NAME] [--set KEY=VALUE]... (unknown {other})");
+                eprintln!("{USAGE} (unknown {other})");
                 std::process::exit(2);
             }
         }
         i += 1;
     }
-    println!("| shape | vertices | acc@0.05 | acc@0.10 | time s | symmetries | rank of best |");
-    println!("|---|---|---|---|---|---|---|");
-    let print = |r: &Row| {
-        println!("| {} | {} | {:.1}% | {:.1}% | {:.2} | {} | {} |", r.name, r.vertices, 100.0 * r.acc05, 100.0 * r.acc10, r.seconds, r.found, r.rank);
-    };
+    println!("| dataset | shape | vertices | best @0.05 | best @0.10 | first @0.05 | pyFM @0.05 | time s | symmetries | rank of best |");
+    println!("|---|---|---|---|---|---|---|---|---|---|");
     let mut offs: Vec<PathBuf> = Vec::new();
     for dir in std::iter::once(data.clone()).chain(std::fs::read_dir(&data).into_iter().flatten().flatten().map(|e| e.path())) {
         if let Ok(entries) = std::fs::read_dir(&dir) {
@@ -157,6 +304,7 @@ fn main() {
         if only.as_ref().is_some_and(|o| !name.contains(o.as_str())) {
             continue;
         }
+        let dataset = p.parent().and_then(|d| d.file_name()).map_or(String::new(), |d| d.to_string_lossy().to_string());
         let raw = match read_mesh(&p) {
             Ok(r) => r,
             Err(e) => {
@@ -184,8 +332,10 @@ fn main() {
             .filter(|(a, b)| *a < to_mesh.len() && b[0] < to_mesh.len() && to_mesh[*a] != usize::MAX && to_mesh[b[0]] != usize::MAX)
             .map(|(a, b)| (to_mesh[a], vec![to_mesh[b[0]]]))
             .collect();
-        let r = score(&name, &mesh, &truth, &params);
-        print(&r);
+        let mut r = score(&name, &mesh, &truth, &params);
+        r.dataset = dataset;
+        r.peer = peer_dir.as_ref().and_then(|d| score_peer(&d.join(format!("{name}.map")), &mesh, &to_mesh, &truth));
+        print_row(&r);
         rows.push(r);
     }
     if generated {
@@ -200,27 +350,43 @@ fn main() {
                 continue;
             }
             let truth: Vec<(usize, Vec<usize>)> = (0..c.mesh.num_vertices()).map(|v| (v, vec![c.mirror[v] as usize])).collect();
-            let r = score(name, &c.mesh, &truth, &params);
-            print(&r);
+            let mut r = score(name, &c.mesh, &truth, &params);
+            r.dataset = "generated".into();
+            print_row(&r);
             rows.push(r);
         }
-        // The star: every one of its 9 symmetries, each scored against the best detected map.
+        // The star: every one of its 19 symmetries, each scored against the best detected map.
         if only.as_ref().is_none_or(|o| "star".contains(o.as_str())) {
             let c = shapes::star(5, 5);
             let truths: Vec<(String, Vec<(usize, Vec<usize>)>)> = shapes::star_symmetries(&c, 5)
                 .into_iter()
                 .map(|(name, map)| (format!("star, 5 arms: {name}"), map.iter().enumerate().map(|(v, &w)| (v, vec![w as usize])).collect()))
                 .collect();
-            for r in score_all(&c.mesh, &truths, &params) {
-                print(&r);
+            for mut r in score_all(&c.mesh, &truths, &params) {
+                r.dataset = "star".into();
+                print_row(&r);
                 rows.push(r);
             }
         }
     }
     if !rows.is_empty() {
-        let mean05 = rows.iter().map(|r| r.acc05).sum::<f64>() / rows.len() as f64;
-        let mean10 = rows.iter().map(|r| r.acc10).sum::<f64>() / rows.len() as f64;
-        let time = rows.iter().map(|r| r.seconds).sum::<f64>() / rows.len() as f64;
-        println!("| **mean** | | {:.1}% | {:.1}% | {:.2} | | |", 100.0 * mean05, 100.0 * mean10, time);
+        print_summary(&rows);
+    }
+    if let Some(path) = symmetries_tsv {
+        let mut out = String::from("shape\tindex\tacc05\tacc10\tkind\torder\treversal\tfixed\tcoverage\tdistortion\tcomplexity\tscore\n");
+        for line in SYMMETRY_ROWS.lock().unwrap().iter() {
+            out += line;
+            out.push('\n');
+        }
+        if let Err(e) = std::fs::write(&path, out) {
+            eprintln!("intrinsym-eval: {}: {e}", path.display());
+            std::process::exit(1);
+        }
+    }
+    if let Some(path) = tsv {
+        if let Err(e) = write_tsv(&path, &rows) {
+            eprintln!("intrinsym-eval: {}: {e}", path.display());
+            std::process::exit(1);
+        }
     }
 }

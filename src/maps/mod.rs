@@ -152,6 +152,9 @@ pub struct Context<'a> {
     pub energies: usize,
     /// The eigenbasis, for ZoomOut refinement (`None` disables it).
     pub basis: Option<&'a Eigenbasis>,
+    /// The judge on this graph ([`crate::judge`]) with the probe vertices distortion is
+    /// measured on and the largest distortion accepted; `None` ranks global maps by complexity.
+    pub judge: Option<(crate::judge::Judge, Vec<usize>, f64)>,
     /// ZoomOut's data on `basis` up to `zoom_size` eigenfunctions, built on first use.
     zoom: std::sync::OnceLock<zoomout::ZoomBasis>,
     /// Every vertex's profile among the samples (the anchors of every refined map's own
@@ -180,7 +183,7 @@ impl<'a> Context<'a> {
         let stride = (n / params.search_vertices.max(1)).max(1);
         let energies = wks.ncols();
         let rows = row_major(wks.as_ref(), energies);
-        Context { positions, emb, adjacency, diameter, search: (0..n).step_by(stride).collect(), wks: rows, energies, basis: None, zoom: Default::default(), samples: Default::default(), zoom_size: params.zoomout_k }
+        Context { positions, emb, adjacency, diameter, search: (0..n).step_by(stride).collect(), wks: rows, energies, basis: None, judge: None, zoom: Default::default(), samples: Default::default(), zoom_size: params.zoomout_k }
     }
 
     /// Number of vertices.
@@ -203,6 +206,13 @@ impl<'a> Context<'a> {
     pub fn zoom(&self) -> Option<&zoomout::ZoomBasis> {
         let basis = self.basis?;
         Some(self.zoom.get_or_init(|| zoomout::ZoomBasis::new(basis, self.zoom_size.max(1))))
+    }
+
+    /// The judge's verdict on `map`, when the context has a judge.
+    pub fn verdict(&self, map: &[i64]) -> Option<crate::judge::Verdict> {
+        let (judge, probes, max_distortion) = self.judge.as_ref()?;
+        let distortion = crate::characterize::sample_distortion(map, probes, self.emb, self.diameter);
+        Some(judge.judge(map, distortion, *max_distortion))
     }
 
     /// WKS distance between two vertices.
@@ -536,7 +546,7 @@ pub fn refine(ctx: &Context<'_>, m: &DenseMap, samples: &[usize], params: &MapPa
 fn refine_first(ctx: &Context<'_>, m: &DenseMap, samples: &[usize], params: &MapParams) -> Option<DenseMap> {
     let (Some(basis), Some(zb)) = (ctx.basis, ctx.zoom()) else { return None };
     let own = |image: Vec<usize>| own_map(ctx, image, samples, params);
-    let better = |a: &DenseMap, b: &DenseMap| quality(basis, a, params) < quality(basis, b, params);
+    let better = |a: &DenseMap, b: &DenseMap| quality(ctx, basis, a, params) < quality(ctx, basis, b, params);
     let stays = |r: &DenseMap| stays_with(ctx, m, r, samples, params);
     // Two starts, both zoomed out to a middle size; the better one (by `quality`) continues.
     let mid = (params.zoomout_k / 3).max(params.spectral_start).min(params.zoomout_k);
@@ -586,7 +596,7 @@ fn refine_second(ctx: &Context<'_>, m: &DenseMap, first: DenseMap, samples: &[us
     if let Some((_, mut image, _)) = profile_images(ctx, &again, samples, params.accept * ctx.diameter * 2.0, params) {
         zoomout::zoomout_with(zb, &ctx.adjacency, &mut image, 10, params.zoomout_k, params.zoomout_step);
         let second = own_map(ctx, image, samples, params);
-        if stays_with(ctx, m, &second, samples, params) && quality(basis, &second, params) < quality(basis, &best, params) {
+        if stays_with(ctx, m, &second, samples, params) && quality(ctx, basis, &second, params) < quality(ctx, basis, &best, params) {
             best = second;
         }
     }
@@ -609,11 +619,14 @@ fn stays_with(ctx: &Context<'_>, m: &DenseMap, r: &DenseMap, samples: &[usize], 
     2 * same >= samples.len()
 }
 
-/// Lower is better: global maps first, by the complexity of their functional map (the more
-/// diagonal, the more isometric); then partial maps by region size.
-fn quality(basis: &Eigenbasis, m: &DenseMap, params: &MapParams) -> f64 {
+/// Lower is better: global maps first, by the judge's score ([`crate::judge`]; without a
+/// judge, by the complexity of their functional map); then partial maps by region size.
+fn quality(ctx: &Context<'_>, basis: &Eigenbasis, m: &DenseMap, params: &MapParams) -> f64 {
     if m.global {
-        crate::characterize::complexity(&functional_map(basis, &m.map, params.fmap_size), 1.0)
+        match ctx.verdict(&m.map) {
+            Some(v) => 1.0 - v.score,
+            None => crate::characterize::complexity(&functional_map(basis, &m.map, params.fmap_size), 1.0),
+        }
     } else {
         1e6 - m.region_size as f64
     }
