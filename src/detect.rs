@@ -349,7 +349,13 @@ fn pipeline(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool)
         let same = both.iter().filter(|&&v| emb.dist(a.map[v] as usize, b.map[v] as usize) <= agree_tol).count();
         !both.is_empty() && same as f64 >= fraction * both.len() as f64
     };
-    let same_as = |dense: &maps::DenseMap, found: &[Found], fraction: f64| found.iter().position(|f| agrees(&f.dense, dense, fraction));
+    // …and of one orientation type: a reflection and a rotation are never one symmetry, however
+    // many samples they agree on (a human's mirror and its front↔back half-turn agree on the
+    // thin limbs).
+    let same_as = |dense: &maps::DenseMap, found: &[Found], fraction: f64| {
+        let reverses = verdict(dense).reverses();
+        found.iter().position(|f| f.verdict.reverses() == reverses && agrees(&f.dense, dense, fraction))
+    };
     // Phase 2: refine (nearly) global maps, keep those that move points and preserve distances.
     let total = profiled.len().max(1);
     let mut refinements = 0;
@@ -496,7 +502,7 @@ fn pipeline(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool)
     // apart before it): report it once, in its better version.
     let mut kept: Vec<Found> = Vec::with_capacity(found.len());
     for f in found {
-        match kept.iter().position(|k| agrees(&k.dense, &f.dense, 0.8)) {
+        match kept.iter().position(|k| k.verdict.reverses() == f.verdict.reverses() && agrees(&k.dense, &f.dense, 0.8)) {
             Some(i) => {
                 if better(&f, &kept[i]) {
                     kept[i] = f;
