@@ -22,11 +22,15 @@
 //!   the diameter ([`crate::characterize::sample_distortion`]).
 //!
 //! With the coverage `c` (the fraction of stencil centres the map is defined on) the score is
-//! $$J = c \cdot |2r - 1| \cdot (1 - f) \cdot \max(0, 1 - δ/δ_{max}).$$
+//! $$J = c \cdot |2r - 1| \cdot (1 - f) \cdot \frac{1}{1 + 2δ/δ_{max}}.$$
 //! Every factor is 1 for a perfect global isometry of one orientation type that fixes nothing,
 //! and each failure mode above drives one of them to 0. The score is a product (not a weighted
 //! sum) so that no factor needs a weight fitted to data; the two radii are fractions of
-//! √area, the scale of the evaluation protocol.
+//! √area, the scale of the evaluation protocol. The distortion factor is soft (halved at
+//! `δ_max/2`), not a cut-off at `δ_max`: on the SHREC'16 kids, whose glued self-contacts
+//! distort even the true mirror by 0.04–0.05, the cut-off scored the true mirror 0 and the
+//! first reported symmetry was right on 37.6% mean acc@0.05, the soft factor 42.3% (other
+//! datasets unchanged; halving at `δ_max/4` or `δ_max` gave the same rankings).
 
 use crate::mesh::Mesh;
 
@@ -180,7 +184,7 @@ impl Judge {
         let fixed = if defined > 0 { fixed as f64 / defined as f64 } else { 1.0 };
         let reversal = if judged > 0 { flipped as f64 / judged as f64 } else { 0.5 };
         let v = Verdict { reversal, fixed, coverage, score: 0.0 };
-        let fit = if max_distortion > 0.0 { (1.0 - distortion / max_distortion).max(0.0) } else { 1.0 };
+        let fit = if max_distortion > 0.0 && distortion.is_finite() { 1.0 / (1.0 + 2.0 * distortion / max_distortion) } else if distortion.is_finite() { 1.0 } else { 0.0 };
         Verdict { score: coverage * v.coherence() * (1.0 - fixed) * fit, ..v }
     }
 }
@@ -274,8 +278,10 @@ mod tests {
         let j = judge_of(&mesh);
         let mirror: Vec<i64> = shapes::mirror_map(&mesh, 0).iter().map(|&m| m as i64).collect();
         let full = j.judge(&mirror, 0.0, 0.04).score;
-        assert!(j.judge(&mirror, 0.02, 0.04).score < 0.6 * full);
-        assert_eq!(j.judge(&mirror, 0.05, 0.04).score, 0.0);
+        let half = j.judge(&mirror, 0.02, 0.04).score;
+        assert!((half - 0.5 * full).abs() < 1e-12, "{half} {full}");
+        assert!(j.judge(&mirror, 0.08, 0.04).score < 0.21 * full);
+        assert_eq!(j.judge(&mirror, f64::INFINITY, 0.04).score, 0.0);
         let part: Vec<i64> = mirror.iter().enumerate().map(|(v, &m)| if mesh.vertices[v][2] > 0.0 { m } else { -1 }).collect();
         let p = j.judge(&part, 0.0, 0.04);
         assert!((0.35..0.65).contains(&p.coverage) && p.reversal > 0.95, "{p:?}");
