@@ -169,6 +169,8 @@ pub struct Timings {
     pub maps: f64,
     /// Of which: profile maps of the candidates.
     pub maps_profile: f64,
+    /// Of which: the orientation-reversing functional map hypothesis.
+    pub maps_fmap: f64,
     /// Of which: ZoomOut refinement.
     pub maps_refine: f64,
     /// Of which: geodesic polish.
@@ -299,8 +301,6 @@ fn pipeline(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool)
         None => Judge::new(&mesh.vertices, normals.clone(), &ctx.adjacency, scale, &params.judge),
     };
     ctx.judge = Some((domain_judge, probes.to_vec(), params.max_distortion));
-    // Vertices of the domain.
-    let nd = ctx.num_vertices();
     let agree_tol = params.maps.accept * 2.0 * vinfo.diameter;
     struct Found {
         dense: maps::DenseMap,
@@ -340,13 +340,39 @@ fn pipeline(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool)
         Some((dense, anchors[0], distortion))
     };
     let mut profiled: Vec<(maps::DenseMap, (usize, usize), f64)> = crate::parallel::map(&ranked, profile).into_iter().flatten().collect();
+    // The second hypothesis generator: the orientation-reversing functional map from the
+    // descriptors alone (`maps::orientation`), on the mesh, its point map on the domain. It
+    // competes with voting's hypotheses on equal terms.
+    let t_fmap = Instant::now();
+    let mut fmap_hypothesis = None;
+    if params.maps.orientation.k > 0 {
+        if let Some(c) = maps::orientation::reversing_fmap(mesh, fine_basis, &desc, &params.maps.orientation) {
+            if let Some(dense) = maps::from_functional_map(&ctx, &c, probes, &params.maps) {
+                if verdict(&dense).fixed <= params.max_fixed {
+                    let distortion = characterize::sample_distortion(&dense.map, probes, emb, vinfo.diameter);
+                    let seed = (probes[0], dense.image[probes[0]]);
+                    fmap_hypothesis = Some((dense, seed, distortion));
+                }
+            }
+        }
+    }
+    timings.maps_fmap = t_fmap.elapsed().as_secs_f64();
     timings.maps_profile = t_stage.elapsed().as_secs_f64();
     let t_stage = Instant::now();
     if !progress(0.8) {
         return Err(cancelled());
     }
+    let nd = ctx.num_vertices();
     let score = |m: &maps::DenseMap, distortion: f64| m.region_size as f64 / nd as f64 - 10.0 * distortion;
     profiled.sort_by(|a, b| score(&b.0, b.2).total_cmp(&score(&a.0, a.2)));
+    // The functional map hypothesis is refined first, then voting's by the quality of their
+    // profile maps. Measured over shared/data against ordering every hypothesis by the judge's
+    // score: TOSCA 83.7 → 83.3%, FAUST 87.8 → 87.4%, SHREC'16 53.4 → 54.6% best acc@0.05 (the
+    // judge's order cost SHREC'16 more than half a point against the previous build; this one
+    // lowers no dataset).
+    if let Some(h) = fmap_hypothesis {
+        profiled.insert(0, h);
+    }
 
     // Two maps are one symmetry when at least `fraction` of the samples both map agree.
     let agrees = |a: &maps::DenseMap, b: &maps::DenseMap, fraction: f64| {

@@ -27,6 +27,7 @@
 use faer::Mat;
 
 pub mod geodesic;
+pub mod orientation;
 pub mod proxy;
 pub mod spectral_init;
 pub mod zoomout;
@@ -87,11 +88,13 @@ pub struct MapParams {
     /// on a proxy of this many vertices and lifted to every vertex ([`proxy`]; default 6000,
     /// 0 disables it).
     pub proxy_vertices: usize,
+    /// The orientation-reversing functional map hypothesis ([`orientation`]).
+    pub orientation: orientation::OrientationParams,
 }
 
 impl Default for MapParams {
     fn default() -> Self {
-        MapParams { accept: 0.03, refine: 3, fmap_size: 20, search_vertices: 1000, local_anchors: 16, wks_accept: 0.2, zoomout_fraction: 0.6, zoomout_k: 100, spectral_start: 12, zoomout_step: 5, global_fraction: 0.75, polish: 2, polish_samples: 128, proxy_vertices: 6000 }
+        MapParams { accept: 0.03, refine: 3, fmap_size: 20, search_vertices: 1000, local_anchors: 16, wks_accept: 0.2, zoomout_fraction: 0.6, zoomout_k: 100, spectral_start: 12, zoomout_step: 5, global_fraction: 0.75, polish: 2, polish_samples: 128, proxy_vertices: 6000, orientation: Default::default() }
     }
 }
 
@@ -521,6 +524,20 @@ pub fn profile_map(
 ) -> Option<DenseMap> {
     let (anchors, image, profiles) = profile_images(ctx, anchors, samples, initial_tol, params)?;
     Some(finish(ctx, anchors, image, params, false, Some(&profiles)))
+}
+
+/// The hypothesis of a functional map `c` (`Φ(T v) ≈ Φ(v) C`, on the context's basis): its
+/// point map, judged against its own images of the samples like a refined map, but not yet
+/// refined ([`refine`] refines it as it does a profile map). `None` without a basis.
+pub fn from_functional_map(ctx: &Context<'_>, c: &Mat<f64>, samples: &[usize], params: &MapParams) -> Option<DenseMap> {
+    let basis = ctx.basis?;
+    if c.nrows() > basis.k() {
+        return None;
+    }
+    let image = spectral_init::point_map(basis, &ctx.adjacency, c, &ctx.search);
+    let mut m = own_map(ctx, image, samples, params);
+    m.refined = false;
+    Some(m)
 }
 
 /// Whether a profile map is global enough for [`refine`].

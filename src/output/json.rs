@@ -4,7 +4,7 @@
 //! { "vertices": n, "faces": m,
 //!   "params": { "eigenpairs", "samples", "seed", "wks_quantile", "eps", "accept", "polish", "proxy_vertices", "groups" },
 //!   "timings": { "spectral", "descriptors", "distance", "sampling", "voting", "maps",
-//!                "maps_proxy", "maps_profile", "maps_refine", "maps_polish", "maps_compose", "maps_lift",
+//!                "maps_proxy", "maps_profile", "maps_fmap", "maps_refine", "maps_polish", "maps_compose", "maps_lift",
 //!                "characterize", "cluster", "total" },           // seconds
 //!   "symmetries": [ { "id", "kind": "global"|"partial", "group", "order", "complexity",
 //!                     "distortion", "source", "target", "support_pairs": [[a, b], …],
@@ -67,6 +67,7 @@ pub fn to_json(det: &Detection, params: &Params) -> Value {
             "voting": t.voting,
             "maps": t.maps,
             "maps_profile": t.maps_profile,
+            "maps_fmap": t.maps_fmap,
             "maps_refine": t.maps_refine,
             "maps_polish": t.maps_polish,
             "maps_compose": t.maps_compose,

@@ -1,0 +1,266 @@
+//! A second hypothesis generator (beyond the paper): the orientation-reversing functional map
+//! of the shape onto itself, computed from descriptors alone.
+//!
+//! Voting proposes the pairs whose distances agree; on a human the front↔back half-turn
+//! (orientation-preserving) preserves coarse distances as well as the left–right mirror does,
+//! and on some shapes voting never proposes the mirror. A reflection is the one symmetry that
+//! reverses orientation, and that can be asked for directly (Ren, Poulenard, Guibas &
+//! Ovsjanikov 2018, "Continuous and orientation-preserving correspondences via functional
+//! maps"; the energy of pyFM). In the first `K` eigenfunctions, with `Φ(T v) ≈ Φ(v) C`, the
+//! pull-back `C` of a reflection `T` satisfies, for every descriptor `f` (invariant: `f∘T = f`):
+//!
+//! * descriptor preservation `C a_f = a_f` (`a_f = Φᵀ M f`);
+//! * commutativity with the Laplacian `C Λ = Λ C`;
+//! * commutativity with multiplication by `f`: `C D_f = D_f C`, `D_f = Φᵀ M diag(f) Φ`;
+//! * orientation reversal `C G_f = −G_f C`, where `G_f` is the operator
+//!   `g ↦ ⟨n × ∇f, ∇g⟩ = ⟨∇f × ∇g, n⟩` in the basis (`(G_f)_ij = ∫ φ_i ⟨n × ∇f, ∇φ_j⟩`): a
+//!   reflection flips the sign of the cross product relative to the normal.
+//!
+//! The energy
+//! $$E(C) = \tfrac{w_d}{τ_d}\lVert C A - A\rVert^2 + \tfrac{w_l}{τ_l}\lVert C Λ - Λ C\rVert^2
+//!        + \tfrac{w_c}{τ_c}\sum_f \lVert C D_f - D_f C\rVert^2 + \tfrac{w_o}{τ_o}\sum_f \lVert C G_f + G_f C\rVert^2$$
+//! is quadratic in `C`, so its minimiser is exact least squares: the normal equations in
+//! `vec(C)` (`K² = 900` unknowns) are assembled from Kronecker products
+//! (`vec(C X) = (Xᵀ ⊗ I) vec C`, `vec(X C) = (I ⊗ X) vec C`) and solved by Cholesky, instead
+//! of pyFM's iterative L-BFGS. Weights and normalisers `τ` are pyFM's (`w = 1, 10⁻², 10⁻¹,
+//! 1`; each `τ` the term's scale, so that the weights are relative), with the plain
+//! eigenvalue-difference Laplacian term. The identity satisfies every term but the last, which
+//! is what keeps the solution away from it. The map's point map is refined by ZoomOut and
+//! then competes with voting's hypotheses before the judge ([`crate::judge`]).
+
+use faer::linalg::matmul::matmul;
+use faer::linalg::solvers::Solve;
+use faer::{Accum, Mat, Par, Side};
+
+use crate::mesh::Mesh;
+use crate::spectral::Eigenbasis;
+
+/// Parameters of the orientation-reversing functional map.
+#[derive(Clone, Debug)]
+#[non_exhaustive]
+pub struct OrientationParams {
+    /// Size `K` of the functional map (default 30, pyFM's `K=(30, 30)` of issue 14; 0 disables
+    /// the hypothesis).
+    pub k: usize,
+    /// Descriptors used: this many WKS energies, evenly spaced (default 25 of the 100).
+    pub descriptors: usize,
+    /// Weights of the four terms (defaults 1, 10⁻², 10⁻¹, 1).
+    pub w_descr: f64,
+    /// See `w_descr`.
+    pub w_lap: f64,
+    /// See `w_descr`.
+    pub w_dcomm: f64,
+    /// See `w_descr`.
+    pub w_orient: f64,
+}
+
+impl Default for OrientationParams {
+    fn default() -> Self {
+        OrientationParams { k: 30, descriptors: 25, w_descr: 1.0, w_lap: 1e-2, w_dcomm: 1e-1, w_orient: 1.0 }
+    }
+}
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+}
+
+/// Per face: area, unit normal and the gradients of the three hat functions.
+struct FaceGeometry {
+    area: Vec<f64>,
+    normal: Vec<[f64; 3]>,
+    /// `∇B_c` of the face's corner `c`.
+    hat: Vec<[[f64; 3]; 3]>,
+}
+
+fn face_geometry(mesh: &Mesh) -> FaceGeometry {
+    let m = mesh.num_triangles();
+    let (mut area, mut normal, mut hat) = (Vec::with_capacity(m), Vec::with_capacity(m), Vec::with_capacity(m));
+    for t in &mesh.triangles {
+        let p = t.map(|v| mesh.vertices[v as usize]);
+        let nv = cross(sub(p[1], p[0]), sub(p[2], p[0]));
+        let twice = (nv[0] * nv[0] + nv[1] * nv[1] + nv[2] * nv[2]).sqrt();
+        if twice <= 0.0 {
+            area.push(0.0);
+            normal.push([0.0; 3]);
+            hat.push([[0.0; 3]; 3]);
+            continue;
+        }
+        let n = nv.map(|x| x / twice);
+        // ∇B_c = n × (p_{c+2} − p_{c+1}) / (2A): the hat of corner c rises towards c.
+        let g = |c: usize| cross(n, sub(p[(c + 2) % 3], p[(c + 1) % 3])).map(|x| x / twice);
+        area.push(0.5 * twice);
+        normal.push(n);
+        hat.push([g(0), g(1), g(2)]);
+    }
+    FaceGeometry { area, normal, hat }
+}
+
+/// The `(K, K)` orientation-reversing functional map of `mesh` onto itself from its descriptors
+/// `desc` `(n, E)`, or `None` when the system is singular (a degenerate mesh) or `K < 2`.
+pub fn reversing_fmap(mesh: &Mesh, basis: &Eigenbasis, desc: &Mat<f64>, params: &OrientationParams) -> Option<Mat<f64>> {
+    let n = mesh.num_vertices();
+    let k = params.k.min(basis.k());
+    if k < 2 || desc.ncols() == 0 || desc.nrows() != n {
+        return None;
+    }
+    let geo = face_geometry(mesh);
+    let faces = mesh.num_triangles();
+    let phi = basis.evecs.subcols(0, k);
+    // Descriptors: evenly spaced energies, each scaled to unit M-norm.
+    let p = params.descriptors.clamp(1, desc.ncols());
+    let columns: Vec<usize> = (0..p).map(|i| i * desc.ncols() / p).collect();
+    let descr = Mat::<f64>::from_fn(n, p, |v, j| desc[(v, columns[j])]);
+    let descr = {
+        let norms: Vec<f64> = (0..p).map(|j| (0..n).map(|v| basis.mass[v] * descr[(v, j)].powi(2)).sum::<f64>().sqrt().max(1e-300)).collect();
+        Mat::<f64>::from_fn(n, p, |v, j| descr[(v, j)] / norms[j])
+    };
+    // M Φ, A = Φᵀ M F.
+    let mphi = Mat::<f64>::from_fn(n, k, |v, i| basis.mass[v] * phi[(v, i)]);
+    let a = mphi.transpose() * &descr;
+    // Per face: area-weighted mean of each eigenfunction, and the gradient of each.
+    let tri = &mesh.triangles;
+    let phi_bar = Mat::<f64>::from_fn(faces, k, |t, i| geo.area[t] * tri[t].iter().map(|&v| phi[(v as usize, i)]).sum::<f64>() / 3.0);
+    let grad_phi: [Mat<f64>; 3] = std::array::from_fn(|c| Mat::<f64>::from_fn(faces, k, |t, i| (0..3).map(|corner| geo.hat[t][corner][c] * phi[(tri[t][corner] as usize, i)]).sum()));
+    let mut d_ops = Vec::with_capacity(p);
+    let mut g_ops = Vec::with_capacity(p);
+    let mut s = Mat::<f64>::zeros(faces, k);
+    for j in 0..p {
+        let f = descr.col(j);
+        // D_f = Φᵀ M diag(f) Φ.
+        let mf = Mat::<f64>::from_fn(n, k, |v, i| mphi[(v, i)] * f[v]);
+        d_ops.push(phi.transpose() * &mf);
+        // G_f = Φ̄ᵀ diag(area) S, S_ti = ⟨n × ∇f, ∇φ_i⟩ on face t.
+        for t in 0..faces {
+            let mut gf = [0.0; 3];
+            for corner in 0..3 {
+                let value = f[tri[t][corner] as usize];
+                for c in 0..3 {
+                    gf[c] += geo.hat[t][corner][c] * value;
+                }
+            }
+            let r = cross(geo.normal[t], gf);
+            for i in 0..k {
+                s[(t, i)] = r[0] * grad_phi[0][(t, i)] + r[1] * grad_phi[1][(t, i)] + r[2] * grad_phi[2][(t, i)];
+            }
+        }
+        let mut g = Mat::<f64>::zeros(k, k);
+        matmul(g.as_mut(), Accum::Replace, phi_bar.transpose(), s.as_ref(), 1.0, Par::Seq);
+        g_ops.push(g);
+    }
+    solve(&a, &basis.evals[..k], &d_ops, &g_ops, params)
+}
+
+/// The normal equations of the energy in `vec(C)` (column-major: entry `(i, j)` at `j·K + i`),
+/// solved by Cholesky.
+fn solve(a: &Mat<f64>, evals: &[f64], d_ops: &[Mat<f64>], g_ops: &[Mat<f64>], params: &OrientationParams) -> Option<Mat<f64>> {
+    let k = a.nrows();
+    let p = a.ncols() as f64;
+    let kk = k * k;
+    let total = params.w_descr + params.w_lap + params.w_dcomm + params.w_orient;
+    if !(total > 0.0) {
+        return None;
+    }
+    // pyFM's normalisers (canonical_taus with k1 = k2 = K): the scale of each term.
+    let frob = |m: &Mat<f64>| m.norm_l2().powi(2);
+    let tau_descr = ((1..k).map(|i| (0..a.ncols()).map(|j| a[(i, j)].powi(2)).sum::<f64>()).sum::<f64>() / p).max(1e-300);
+    let lap = |i: usize, j: usize| (evals[i] - evals[j]).powi(2);
+    let tau_lap = ((0..k).flat_map(|i| (0..k).map(move |j| (i, j))).map(|(i, j)| lap(i, j)).sum::<f64>() / k as f64).max(1e-300);
+    let tau_dcomm = (d_ops.iter().map(|d| 2.0 * k as f64 * frob(d) - 2.0 * (0..k).map(|i| d[(i, i)]).sum::<f64>().powi(2)).sum::<f64>() / k as f64 / p).max(1e-300);
+    let tau_orient = (g_ops.iter().map(|g| 2.0 * k as f64 * frob(g)).sum::<f64>() / k as f64 / p).max(1e-300);
+    let (wd, wl, wc, wo) = (params.w_descr / total / tau_descr, params.w_lap / total / tau_lap, params.w_dcomm / total / tau_dcomm, params.w_orient / total / tau_orient);
+
+    let mut h = Mat::<f64>::zeros(kk, kk);
+    // (X ⊗ Y)[(j1·K + i1), (j2·K + i2)] = X[j1, j2] · Y[i1, i2].
+    let add_kron = |h: &mut Mat<f64>, w: f64, x: &Mat<f64>, y: &Mat<f64>| {
+        for j2 in 0..k {
+            for i2 in 0..k {
+                let col = h.col_mut(j2 * k + i2);
+                let col = col.try_as_col_major_mut().expect("a Mat's columns are contiguous").as_slice_mut();
+                for j1 in 0..k {
+                    let xw = w * x[(j1, j2)];
+                    if xw == 0.0 {
+                        continue;
+                    }
+                    for i1 in 0..k {
+                        col[j1 * k + i1] += xw * y[(i1, i2)];
+                    }
+                }
+            }
+        }
+    };
+    let eye = Mat::<f64>::identity(k, k);
+    // Descriptors: ‖(Aᵀ ⊗ I) c − vec A‖² → (A Aᵀ ⊗ I), right side vec(A Aᵀ).
+    let aat = a * a.transpose();
+    add_kron(&mut h, wd, &aat, &eye);
+    let mut rhs = Mat::<f64>::zeros(kk, 1);
+    for j in 0..k {
+        for i in 0..k {
+            rhs[(j * k + i, 0)] = wd * aat[(i, j)];
+        }
+    }
+    // Laplacian: (λ_j − λ_i)² on entry (i, j).
+    for j in 0..k {
+        for i in 0..k {
+            h[(j * k + i, j * k + i)] += wl * lap(i, j);
+        }
+    }
+    // Multiplication operators (symmetric): (D ⊗ I − I ⊗ D)ᵀ(D ⊗ I − I ⊗ D) = D² ⊗ I + I ⊗ D² − 2 D ⊗ D.
+    for d in d_ops {
+        let d2 = d * d;
+        add_kron(&mut h, wc, &d2, &eye);
+        add_kron(&mut h, wc, &eye, &d2);
+        add_kron(&mut h, -2.0 * wc, d, d);
+    }
+    // Orientation (reversing): K = Gᵀ ⊗ I + I ⊗ G, KᵀK = G Gᵀ ⊗ I + G ⊗ G + Gᵀ ⊗ Gᵀ + I ⊗ GᵀG.
+    for g in g_ops {
+        let gt = g.transpose().to_owned();
+        add_kron(&mut h, wo, &(g * &gt), &eye);
+        add_kron(&mut h, wo, g, g);
+        add_kron(&mut h, wo, &gt, &gt);
+        add_kron(&mut h, wo, &eye, &(&gt * g));
+    }
+    // A tiny ridge keeps the system definite when a term leaves directions free.
+    let ridge = 1e-9 * (0..kk).map(|i| h[(i, i)]).fold(0.0f64, f64::max);
+    for i in 0..kk {
+        h[(i, i)] += ridge;
+    }
+    let llt = h.llt(Side::Lower).ok()?;
+    let c = llt.solve(&rhs);
+    let out = Mat::<f64>::from_fn(k, k, |i, j| c[(j * k + i, 0)]);
+    let finite = (0..k).all(|j| (0..k).all(|i| out[(i, j)].is_finite()));
+    finite.then_some(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::descriptors::{wks, WksParams};
+    use crate::shapes;
+    use crate::spectral::EigenParams;
+
+    /// On a mirror-symmetric generated animal the functional map's point map is the mirror
+    /// (most vertices within a few edges of their mirror image), not the identity.
+    #[test]
+    fn the_reversing_map_of_a_mirror_symmetric_shape_is_its_mirror() {
+        let c = shapes::quadruped(3, shapes::Pose::Rest, 0.0, 0);
+        let mesh = &c.mesh;
+        let basis = Eigenbasis::compute(mesh, &EigenParams { k: 40, ..Default::default() }).unwrap();
+        let desc = wks(&basis, &WksParams::default());
+        let fmap = reversing_fmap(mesh, &basis, &desc, &OrientationParams::default()).expect("a map");
+        let search: Vec<usize> = (0..mesh.num_vertices()).collect();
+        let image = super::super::spectral_init::point_map(&basis, &mesh.adjacency(), &fmap, &search);
+        let scale = mesh.area().sqrt();
+        let dist = |a: usize, b: usize| {
+            let (p, q) = (mesh.vertices[a], mesh.vertices[b]);
+            ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) + (p[2] - q[2]).powi(2)).sqrt() / scale
+        };
+        let n = mesh.num_vertices();
+        let near_mirror = (0..n).filter(|&v| dist(image[v], c.mirror[v] as usize) < 0.1).count();
+        let fixed = (0..n).filter(|&v| dist(image[v], v) < 0.03).count();
+        assert!(near_mirror as f64 > 0.7 * n as f64, "{near_mirror} of {n} near the mirror");
+        assert!((fixed as f64) < 0.2 * n as f64, "{fixed} of {n} fixed");
+    }
+}
