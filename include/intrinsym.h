@@ -7,7 +7,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #define SYM_VERSION_MAJOR 0
-#define SYM_VERSION_MINOR 1
+#define SYM_VERSION_MINOR 2
 #define SYM_VERSION_PATCH 0
 
 
@@ -154,6 +154,20 @@ typedef struct {
    * Support correspondences as (source, target) pairs: 2 × num_support_pairs values.
    */
   const int64_t *support_pairs;
+  /**
+   * The judge's score in [0, 1] that symmetries are ranked by (higher is better; added in
+   * 0.2: written only when `struct_size` covers it).
+   */
+  double score;
+  /**
+   * Fraction of small surface triangles whose orientation the map reverses: near 1 for a
+   * reflection, near 0 for a rotation (added in 0.2).
+   */
+  double reversal;
+  /**
+   * Fraction of the surface the map (nearly) fixes (added in 0.2).
+   */
+  double fixed;
 } sym_symmetry;
 
 #ifdef __cplusplus

@@ -108,10 +108,14 @@ fn maps_on_a_proxy_are_lifted_to_every_vertex() {
         assert!(intrinsym::maps::proxy::wanted(n, &params.maps));
         let d = detect(&c.mesh, &params, &mut |_| true).unwrap();
         assert!(d.timings.maps_proxy > 0.0 && d.timings.maps_lift > 0.0);
-        let s = &d.symmetries[0];
-        assert_eq!(s.kind, Kind::Global);
-        assert!(s.map.iter().all(|&t| t >= 0 && (t as usize) < n));
-        let acc = eval::accuracy(&c.mesh, &s.map, &mirror_truth(&c), &[0.05])[0];
+        // Every global map is lifted to every vertex. The mirror is among them; on this
+        // 1,000-vertex proxy of a 2,562-vertex mesh it is not always first: the lift from so
+        // coarse a proxy distorts it (0.026 on seed 0) more than the quadruped's front↔back
+        // near-symmetry (0.021), and the judge ranks by distortion among reflections.
+        for s in d.symmetries.iter().filter(|s| s.kind == Kind::Global) {
+            assert!(s.map.iter().all(|&t| t >= 0 && (t as usize) < n));
+        }
+        let acc = d.symmetries.iter().map(|s| eval::accuracy(&c.mesh, &s.map, &mirror_truth(&c), &[0.05])[0]).fold(0.0, f64::max);
         assert!(acc >= 0.88, "seed {seed}: mirror acc@0.05 {acc}");
         let (worst, i, j) = worst_leg_map(&c, &d);
         assert!(worst >= 0.75, "seed {seed}: leg {i} -> leg {j}: {worst}");
@@ -227,4 +231,64 @@ fn star_symmetry_group_is_complete() {
         let best = d.symmetries.iter().map(|s| eval::accuracy(&c.mesh, &s.map, &truth, &[0.05])[0]).fold(0.0, f64::max);
         assert!(best >= 0.93, "{name}: best acc@0.05 {best}");
     }
+}
+
+/// A narrow animal without legs (body radii 0.12 × 0.4 × 1 in x, y, z; a head and a bent
+/// tail along z): its left–right mirror moves points little, as a TOSCA cat's does.
+fn narrow_animal(level: u32) -> shapes::Creature {
+    let limbs = [
+        shapes::Limb { direction: [0.0, 0.3, 1.0], axis: [0.0, 0.3, 1.0], length: 0.5, cap: 0.45, bend: 0.0, bend_axis: [0.0, 1.0, 0.0] },
+        shapes::Limb { direction: [0.0, 0.2, -1.0], axis: [0.0, 0.3, -1.0], length: 0.8, cap: 0.3, bend: 0.5, bend_axis: [1.0, 0.0, 0.0] },
+    ];
+    shapes::creature(level, [0.12, 0.4, 1.0], &limbs, 0.0, 0)
+}
+
+/// A mirror that moves points little (a flat, narrow body) is still reported, first: the
+/// identity filter is the fraction of fixed points, not the mean displacement (which rejected
+/// TOSCA's cats, whose mirror moves points by 0.036–0.042 of the diameter; this body's by
+/// 0.086, the thinnest generated body tried by 0.073).
+#[test]
+fn a_mirror_that_moves_points_little_is_found() {
+    let c = narrow_animal(4);
+    let (d, acc) = strongest_mirror_accuracy(&c);
+    assert!(acc[0] >= 0.85, "acc@0.05 {acc:?}");
+    let s = &d.symmetries[0];
+    assert!(s.verdict.reverses() && s.verdict.fixed < 0.3, "{:?}", s.verdict);
+    // The judge's fixed fraction (the identity filter) sees a mirror, however little it moves
+    // points: only the band along the symmetry plane is fixed.
+    let n = c.mesh.num_vertices();
+    let truth: Vec<i64> = c.mirror.iter().map(|&m| m as i64).collect();
+    let judge = intrinsym::judge::Judge::new(&c.mesh.vertices, intrinsym::judge::vertex_normals(&c.mesh), &c.mesh.adjacency(), c.mesh.area().sqrt(), &Default::default());
+    let v = judge.judge(&truth, 0.0, 0.04);
+    assert!(v.fixed < 0.3 && v.reversal > 0.9, "true mirror of {n} vertices: {v:?}");
+}
+
+/// A half-identity (the mirror on the front half, the identity on the back) loses to the
+/// mirror before the judge, and detection reports the mirror first, with its type.
+#[test]
+fn the_judge_prefers_the_mirror_to_a_half_identity() {
+    let c = shapes::quadruped(4, Pose::Walking, 0.0, 0);
+    let mesh = &c.mesh;
+    let judge = intrinsym::judge::Judge::new(&mesh.vertices, intrinsym::judge::vertex_normals(mesh), &mesh.adjacency(), mesh.area().sqrt(), &Default::default());
+    let mirror: Vec<i64> = c.mirror.iter().map(|&m| m as i64).collect();
+    let half: Vec<i64> = (0..mesh.num_vertices()).map(|v| if c.rest[v][2] > 0.0 { mirror[v] } else { v as i64 }).collect();
+    let (m, h) = (judge.judge(&mirror, 0.01, 0.04), judge.judge(&half, 0.01, 0.04));
+    assert!(m.reversal > 0.9 && m.fixed < 0.2, "mirror {m:?}");
+    assert!(h.fixed > 0.3 && h.coherence() < 0.5 && h.score < 0.5 * m.score, "half-identity {h:?} against {m:?}");
+    let d = run(&c);
+    let first = &d.symmetries[0];
+    assert!(first.verdict.reverses() && first.order == 2, "{:?}", first.verdict);
+    assert!(d.symmetries.windows(2).all(|w| w[0].verdict.score >= w[1].verdict.score), "ranked by the judge");
+}
+
+/// A shape with no symmetry (limbs of different lengths in directions no map exchanges)
+/// gets no global symmetry.
+#[test]
+fn a_shape_without_symmetry_gets_no_global_symmetry() {
+    let limb = |direction: [f64; 3], length: f64, cap: f64| shapes::Limb { direction, axis: direction, length, cap, bend: 0.0, bend_axis: [1.0, 0.0, 0.0] };
+    let limbs = [limb([0.8, -0.5, 0.3], 1.2, 0.35), limb([-0.3, -0.7, 0.65], 0.7, 0.3), limb([0.1, 0.9, -0.4], 0.45, 0.5), limb([-0.9, 0.1, -0.45], 0.9, 0.22)];
+    let c = shapes::creature(4, [0.45, 0.6, 1.0], &limbs, 0.0, 0);
+    let d = run(&c);
+    let global: Vec<_> = d.symmetries.iter().filter(|s| s.kind == Kind::Global).map(|s| (s.verdict, s.distortion)).collect();
+    assert!(global.is_empty(), "global symmetries reported: {global:?}");
 }

@@ -68,6 +68,11 @@ fn set_param(p: &mut Params, kv: &str) -> Result<(), String> {
         "search_vertices" => p.maps.search_vertices = u()?,
         "global_fraction" => p.maps.global_fraction = f()?,
         "proxy_vertices" => p.maps.proxy_vertices = u()?,
+        "fixed_radius" => p.judge.fixed_radius = f()?,
+        "stencil" => p.judge.stencil = f()?,
+        "max_fixed" => p.max_fixed = f()?,
+        "fmap_k" => p.maps.orientation.k = u()?,
+        "fmap_descriptors" => p.maps.orientation.descriptors = u()?,
         _ => return Err(format!("unknown parameter {key}")),
     }
     Ok(())

@@ -77,6 +77,14 @@ pub struct sym_symmetry {
     pub num_support_pairs: usize,
     /// Support correspondences as (source, target) pairs: 2 × num_support_pairs values.
     pub support_pairs: *const i64,
+    /// The judge's score in [0, 1] that symmetries are ranked by (higher is better; added in
+    /// 0.2: written only when `struct_size` covers it).
+    pub score: f64,
+    /// Fraction of small surface triangles whose orientation the map reverses: near 1 for a
+    /// reflection, near 0 for a rotation (added in 0.2).
+    pub reversal: f64,
+    /// Fraction of the surface the map (nearly) fixes (added in 0.2).
+    pub fixed: f64,
 }
 
 /// Progress callback: `fraction` in [0, 1]; return 0 to cancel, nonzero to continue.
@@ -361,6 +369,9 @@ pub unsafe extern "C" fn sym_get_map(result: *const sym_result, index: usize, ou
             fmap: r.fmaps[index].as_ptr(),
             num_support_pairs: s.support_pairs.len(),
             support_pairs: r.pairs[index].as_ptr(),
+            score: s.verdict.score,
+            reversal: s.verdict.reversal,
+            fixed: s.verdict.fixed,
         };
         let n = std::mem::size_of::<sym_symmetry>().min(caller_size);
         // SAFETY: `out` has at least `caller_size` writable bytes (caller contract), n ≤ that.

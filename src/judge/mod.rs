@@ -15,9 +15,12 @@
 //!   flipped stencils among those whose image is not degenerate. A true mirror has `r` near 1,
 //!   the identity and rotations `r` near 0, a half-identity about ½. The **coherence**
 //!   `|2r − 1|` is 1 for a map of one type and 0 for a mixture.
-//! * **Fixed fraction** `f`: the fraction of stencil centres moved by less than
-//!   `fixed_radius`·√area. A reflection fixes only a band along its symmetry curve, a rotation
-//!   its axis points; a map that fixes much of the shape is (partly) the identity.
+//! * **Fixed fraction** `f`: the fraction of stencil centres where the map is locally the
+//!   identity: the centre moves by less than `fixed_radius`·√area and its stencil keeps its
+//!   orientation. A reflection fixes a band along its symmetry curve, but flips the stencils
+//!   there (so a mirror whose plane cuts a long stretch of the surface is not penalised for
+//!   it); a rotation fixes only its axis points; a map that is locally the identity on much of
+//!   the shape is (partly) the identity.
 //! * **Distortion** `δ`: the mean change of the samples' pairwise biharmonic distances, over
 //!   the diameter ([`crate::characterize::sample_distortion`]).
 //!
@@ -59,7 +62,8 @@ impl Default for JudgeParams {
 pub struct Verdict {
     /// Fraction of stencils whose orientation the map reverses, in [0, 1].
     pub reversal: f64,
-    /// Fraction of stencil centres the map (nearly) fixes, in [0, 1].
+    /// Fraction of stencil centres where the map is locally the identity (centre fixed,
+    /// orientation kept), in [0, 1].
     pub fixed: f64,
     /// Fraction of stencil centres the map is defined on, in [0, 1].
     pub coverage: f64,
@@ -161,9 +165,7 @@ impl Judge {
             }
             defined += 1;
             let tv = tv as usize;
-            if norm(sub(self.positions[tv], self.positions[v as usize])) <= self.fixed_radius {
-                fixed += 1;
-            }
+            let stays = norm(sub(self.positions[tv], self.positions[v as usize])) <= self.fixed_radius;
             let (ta, tb) = (map[a as usize], map[b as usize]);
             if ta < 0 || tb < 0 {
                 continue;
@@ -177,6 +179,10 @@ impl Judge {
             judged += 1;
             if dot(c, self.normals[tv]) < 0.0 {
                 flipped += 1;
+            } else if stays {
+                // Locally the identity: the centre stays and its stencil keeps its orientation
+                // (a reflection's fixed curve flips its stencils: not counted).
+                fixed += 1;
             }
         }
         let total = self.stencils.len().max(1) as f64;

@@ -124,15 +124,15 @@ pub fn reversing_fmap(mesh: &Mesh, basis: &Eigenbasis, desc: &Mat<f64>, params: 
     let tri = &mesh.triangles;
     let phi_bar = Mat::<f64>::from_fn(faces, k, |t, i| geo.area[t] * tri[t].iter().map(|&v| phi[(v as usize, i)]).sum::<f64>() / 3.0);
     let grad_phi: [Mat<f64>; 3] = std::array::from_fn(|c| Mat::<f64>::from_fn(faces, k, |t, i| (0..3).map(|corner| geo.hat[t][corner][c] * phi[(tri[t][corner] as usize, i)]).sum()));
-    let mut d_ops = Vec::with_capacity(p);
-    let mut g_ops = Vec::with_capacity(p);
-    let mut s = Mat::<f64>::zeros(faces, k);
-    for j in 0..p {
+    // The descriptors' operators are independent: on all cores.
+    let indices: Vec<usize> = (0..p).collect();
+    let ops: Vec<(Mat<f64>, Mat<f64>)> = crate::parallel::map(&indices, |&j| {
         let f = descr.col(j);
         // D_f = Φᵀ M diag(f) Φ.
         let mf = Mat::<f64>::from_fn(n, k, |v, i| mphi[(v, i)] * f[v]);
-        d_ops.push(phi.transpose() * &mf);
+        let d = phi.transpose() * &mf;
         // G_f = Φ̄ᵀ diag(area) S, S_ti = ⟨n × ∇f, ∇φ_i⟩ on face t.
+        let mut s = Mat::<f64>::zeros(faces, k);
         for t in 0..faces {
             let mut gf = [0.0; 3];
             for corner in 0..3 {
@@ -148,8 +148,9 @@ pub fn reversing_fmap(mesh: &Mesh, basis: &Eigenbasis, desc: &Mat<f64>, params: 
         }
         let mut g = Mat::<f64>::zeros(k, k);
         matmul(g.as_mut(), Accum::Replace, phi_bar.transpose(), s.as_ref(), 1.0, Par::Seq);
-        g_ops.push(g);
-    }
+        (d, g)
+    });
+    let (d_ops, g_ops): (Vec<Mat<f64>>, Vec<Mat<f64>>) = ops.into_iter().unzip();
     solve(&a, &basis.evals[..k], &d_ops, &g_ops, params)
 }
 
@@ -172,55 +173,60 @@ fn solve(a: &Mat<f64>, evals: &[f64], d_ops: &[Mat<f64>], g_ops: &[Mat<f64>], pa
     let tau_orient = (g_ops.iter().map(|g| 2.0 * k as f64 * frob(g)).sum::<f64>() / k as f64 / p).max(1e-300);
     let (wd, wl, wc, wo) = (params.w_descr / total / tau_descr, params.w_lap / total / tau_lap, params.w_dcomm / total / tau_dcomm, params.w_orient / total / tau_orient);
 
-    let mut h = Mat::<f64>::zeros(kk, kk);
-    // (X ⊗ Y)[(j1·K + i1), (j2·K + i2)] = X[j1, j2] · Y[i1, i2].
-    let add_kron = |h: &mut Mat<f64>, w: f64, x: &Mat<f64>, y: &Mat<f64>| {
-        for j2 in 0..k {
-            for i2 in 0..k {
-                let col = h.col_mut(j2 * k + i2);
-                let col = col.try_as_col_major_mut().expect("a Mat's columns are contiguous").as_slice_mut();
+    // The normal matrix as a sum of Kronecker products `w · (X ⊗ Y)`, where
+    // `(X ⊗ Y)[(j1·K + i1), (j2·K + i2)] = X[j1, j2] · Y[i1, i2]`. Terms with a factor `I`
+    // are summed over the descriptors first (Σ_f D_f² ⊗ I = (Σ_f D_f²) ⊗ I).
+    let eye = Mat::<f64>::identity(k, k);
+    let zero = Mat::<f64>::zeros(k, k);
+    // Descriptors: ‖(Aᵀ ⊗ I) c − vec A‖² → A Aᵀ ⊗ I, right side vec(A Aᵀ).
+    let aat = a * a.transpose();
+    // Multiplication operators (symmetric): (D ⊗ I − I ⊗ D)ᵀ(D ⊗ I − I ⊗ D) = D² ⊗ I + I ⊗ D² − 2 D ⊗ D.
+    // Orientation (reversing): K = Gᵀ ⊗ I + I ⊗ G, KᵀK = G Gᵀ ⊗ I + G ⊗ G + Gᵀ ⊗ Gᵀ + I ⊗ GᵀG.
+    let mut left = &aat * wd; // X of X ⊗ I
+    let mut right = zero.clone(); // Y of I ⊗ Y
+    for d in d_ops {
+        let d2 = d * d;
+        left += &d2 * wc;
+        right += &d2 * wc;
+    }
+    for g in g_ops {
+        left += (g * g.transpose()) * wo;
+        right += (g.transpose() * g) * wo;
+    }
+    let mut terms: Vec<(f64, &Mat<f64>, &Mat<f64>)> = vec![(1.0, &left, &eye), (1.0, &eye, &right)];
+    let transposed: Vec<Mat<f64>> = g_ops.iter().map(|g| g.transpose().to_owned()).collect();
+    terms.extend(d_ops.iter().map(|d| (-2.0 * wc, d, d)));
+    terms.extend(g_ops.iter().map(|g| (wo, g, g)));
+    terms.extend(transposed.iter().map(|g| (wo, g, g)));
+    // Columns of the normal matrix, built on all cores.
+    let blocks = crate::parallel::chunks(kk, |cols| {
+        let mut out = vec![0.0; cols.len() * kk];
+        for (c, col) in cols.clone().zip(out.chunks_mut(kk)) {
+            let (j2, i2) = (c / k, c % k);
+            for &(w, x, y) in &terms {
                 for j1 in 0..k {
                     let xw = w * x[(j1, j2)];
                     if xw == 0.0 {
                         continue;
                     }
-                    for i1 in 0..k {
-                        col[j1 * k + i1] += xw * y[(i1, i2)];
+                    let dst = &mut col[j1 * k..(j1 + 1) * k];
+                    for (i1, d) in dst.iter_mut().enumerate() {
+                        *d += xw * y[(i1, i2)];
                     }
                 }
             }
+            // Laplacian: (λ_j − λ_i)² on entry (i, j).
+            col[c] += wl * lap(i2, j2);
         }
-    };
-    let eye = Mat::<f64>::identity(k, k);
-    // Descriptors: ‖(Aᵀ ⊗ I) c − vec A‖² → (A Aᵀ ⊗ I), right side vec(A Aᵀ).
-    let aat = a * a.transpose();
-    add_kron(&mut h, wd, &aat, &eye);
+        out
+    });
+    let columns: Vec<f64> = blocks.concat();
+    let mut h = Mat::<f64>::from_fn(kk, kk, |r, c| columns[c * kk + r]);
     let mut rhs = Mat::<f64>::zeros(kk, 1);
     for j in 0..k {
         for i in 0..k {
             rhs[(j * k + i, 0)] = wd * aat[(i, j)];
         }
-    }
-    // Laplacian: (λ_j − λ_i)² on entry (i, j).
-    for j in 0..k {
-        for i in 0..k {
-            h[(j * k + i, j * k + i)] += wl * lap(i, j);
-        }
-    }
-    // Multiplication operators (symmetric): (D ⊗ I − I ⊗ D)ᵀ(D ⊗ I − I ⊗ D) = D² ⊗ I + I ⊗ D² − 2 D ⊗ D.
-    for d in d_ops {
-        let d2 = d * d;
-        add_kron(&mut h, wc, &d2, &eye);
-        add_kron(&mut h, wc, &eye, &d2);
-        add_kron(&mut h, -2.0 * wc, d, d);
-    }
-    // Orientation (reversing): K = Gᵀ ⊗ I + I ⊗ G, KᵀK = G Gᵀ ⊗ I + G ⊗ G + Gᵀ ⊗ Gᵀ + I ⊗ GᵀG.
-    for g in g_ops {
-        let gt = g.transpose().to_owned();
-        add_kron(&mut h, wo, &(g * &gt), &eye);
-        add_kron(&mut h, wo, g, g);
-        add_kron(&mut h, wo, &gt, &gt);
-        add_kron(&mut h, wo, &eye, &(&gt * g));
     }
     // A tiny ridge keeps the system definite when a term leaves directions free.
     let ridge = 1e-9 * (0..kk).map(|i| h[(i, i)]).fold(0.0f64, f64::max);

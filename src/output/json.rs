@@ -7,7 +7,8 @@
 //!                "maps_proxy", "maps_profile", "maps_fmap", "maps_refine", "maps_polish", "maps_compose", "maps_lift",
 //!                "characterize", "cluster", "total" },           // seconds
 //!   "symmetries": [ { "id", "kind": "global"|"partial", "group", "order", "complexity",
-//!                     "distortion", "source", "target", "support_pairs": [[a, b], …],
+//!                     "distortion", "score", "orientation": "reversing"|"preserving",
+//!                     "reversal", "fixed", "source", "target", "support_pairs": [[a, b], …],
 //!                     "region_size", "map": [n ints, −1 outside], "confidence": [n floats],
 //!                     "fmap": [k_f² floats, row-major], "fmap_size": k_f } ] }
 //! ```
@@ -34,6 +35,10 @@ pub fn to_json(det: &Detection, params: &Params) -> Value {
                 "order": s.order,
                 "complexity": s.complexity,
                 "distortion": s.distortion,
+                "score": s.verdict.score,
+                "orientation": if s.verdict.reverses() { "reversing" } else { "preserving" },
+                "reversal": s.verdict.reversal,
+                "fixed": s.verdict.fixed,
                 "source": s.source,
                 "target": s.target,
                 "support_pairs": s.support_pairs.iter().map(|&(a, b)| [a, b]).collect::<Vec<_>>(),

@@ -45,6 +45,15 @@ int main(int argc, char **argv) {
     }
     printf("strongest symmetry: %zu of %zu vertices map exactly to their mirror image; complexity %.3f\n", exact, m.nv, s.complexity);
     CHECK(exact >= m.nv * 95 / 100, "only %zu exact mirror images", exact);
+    /* The judge: a mirror reverses orientation and fixes only a band along its plane. */
+    CHECK(s.reversal > 0.9 && s.fixed < 0.2 && s.score > 0.5 && s.score <= 1.0, "judge: reversal %.3f fixed %.3f score %.3f", s.reversal, s.fixed, s.score);
+    for (i = 1; i < count; i++) {
+        sym_symmetry t;
+        memset(&t, 0, sizeof t);
+        t.struct_size = sizeof t;
+        CHECK(sym_get_map(r, i, &t) == SYM_STATUS_OK, "get_map %zu", i);
+        CHECK(t.score <= s.score, "symmetry %zu scores %.3f above the first (%.3f)", i, t.score, s.score);
+    }
     q = sym_vertex_symmetry(r);
     CHECK(q != NULL, "vertex symmetry");
     for (i = 0; i < m.nv; i++) CHECK(q[i] >= s.confidence[i] - 1e-12 && q[i] <= 1.0, "summary");
