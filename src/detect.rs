@@ -1,14 +1,26 @@
 //! The whole pipeline: mesh → eigenbasis → WKS + biharmonic distance → samples → voting →
 //! dense maps → characterization → groups, as one call ([`detect`]) returning a [`Detection`].
 //!
-//! Symmetries are reported strongest first (global ones by increasing complexity, then partial
-//! ones by decreasing region). A
-//! candidate's map is kept when it moves points (displacement ≥ `min_displacement`, so the
-//! identity, which always fits the descriptors, is rejected), preserves distances (distortion ≤
-//! `max_distortion`), and is not the same map as a stronger one (agreement on ≥ 80% of the
-//! shared samples; checked again after the geodesic polish, which can bring two versions of
-//! one symmetry together). Finally the set is closed under composition: the composition of two
-//! global symmetries that moves points, preserves distances and is new is reported too.
+//! The phases: **hypotheses** (voting's candidates as profile maps, and the orientation-reversing
+//! functional map of [`crate::maps::orientation`]) → **refine** (ZoomOut and a second profile
+//! pass, then the geodesic polish) → **judge** ([`crate::judge`]) → **report** (compositions
+//! complete the group, maps are lifted from a proxy, characterised and grouped).
+//!
+//! One judge decides: a map that is locally the identity on more than `max_fixed` of the
+//! surface is dropped (the identity always fits the descriptors); a map whose distances change
+//! by more than `max_distortion` is dropped; two maps are one symmetry when they agree on ≥ 50%
+//! of the samples (80% after the polish, which can bring two versions together) *and* have the
+//! same orientation type (a reflection and a rotation never are), and the version the judge
+//! scores higher is kept; symmetries are reported by decreasing score. Complexity is the
+//! paper's characterisation (the symmetry line), not a selector. Finally the set is closed
+//! under composition: the composition of two global symmetries that is not the identity,
+//! preserves distances and is new is reported too.
+//!
+//! Why not the paper's selector (measured over `../shared/data`, 116 shapes, best-of acc@0.05;
+//! `docs/accuracy.md`): complexity preferred half-identities, whose functional maps are more
+//! diagonal than the true mirror's; merging by agreement alone let a human's front↔back
+//! half-turn absorb its mirror (they agree on the thin limbs); mean displacement rejected the
+//! true mirrors of narrow bodies as the identity.
 
 use std::time::Instant;
 
@@ -217,6 +229,15 @@ impl Detection {
     }
 }
 
+/// A symmetry found by the maps stage, in the vertex indices of its domain.
+struct Found {
+    dense: maps::DenseMap,
+    seed: (usize, usize),
+    distortion: f64,
+    complexity: f64,
+    verdict: Verdict,
+}
+
 /// Runs the pipeline; `progress(fraction)` returning `false` cancels with
 /// [`crate::spectral::SpectralError::Cancelled`].
 ///
@@ -302,13 +323,6 @@ fn pipeline(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool)
     };
     ctx.judge = Some((domain_judge, probes.to_vec(), params.max_distortion));
     let agree_tol = params.maps.accept * 2.0 * vinfo.diameter;
-    struct Found {
-        dense: maps::DenseMap,
-        seed: (usize, usize),
-        distortion: f64,
-        complexity: f64,
-        verdict: Verdict,
-    }
     // Of two versions of one symmetry keep, among global maps, the one the judge scores
     // higher (`crate::judge`: a half-identity, more diagonal than the true mirror, loses);
     // otherwise the larger region, then the lower distortion.
@@ -344,20 +358,9 @@ fn pipeline(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool)
     // descriptors alone (`maps::orientation`), on the mesh, its point map on the domain. It
     // competes with voting's hypotheses on equal terms.
     let t_fmap = Instant::now();
-    let mut fmap_hypothesis = None;
-    if params.maps.orientation.k > 0 {
-        if let Some(c) = maps::orientation::reversing_fmap(mesh, fine_basis, &desc, &params.maps.orientation) {
-            if let Some(dense) = maps::from_functional_map(&ctx, &c, probes, &params.maps) {
-                if verdict(&dense).fixed <= params.max_fixed {
-                    let distortion = characterize::sample_distortion(&dense.map, probes, emb, vinfo.diameter);
-                    let seed = (probes[0], dense.image[probes[0]]);
-                    fmap_hypothesis = Some((dense, seed, distortion));
-                }
-            }
-        }
-    }
+    let fmap_hypothesis = fmap_hypothesis(mesh, fine_basis, &desc, &ctx, probes, vinfo.diameter, params);
     timings.maps_fmap = t_fmap.elapsed().as_secs_f64();
-    timings.maps_profile = t_stage.elapsed().as_secs_f64();
+    timings.maps_profile = t_stage.elapsed().as_secs_f64() - timings.maps_fmap;
     let t_stage = Instant::now();
     if !progress(0.8) {
         return Err(cancelled());
@@ -594,7 +597,7 @@ fn pipeline(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool)
         }
     }
     timings.maps_compose = t_stage.elapsed().as_secs_f64();
-    let (emb, basis, probes) = (fine_emb, fine_basis, &samples.vertices);
+    let (emb, basis, probes) = (fine_emb, fine_basis, &samples.vertices[..]);
     // Proxy maps lifted to every vertex (concurrently; each is independent), then judged
     // again on the mesh: distortion on the samples, complexity of the mesh's functional map.
     let t_stage = Instant::now();
@@ -610,14 +613,32 @@ fn pipeline(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool)
     timings.maps_lift = t_stage.elapsed().as_secs_f64();
     timings.maps = t.elapsed().as_secs_f64();
 
+    let symmetries = report(mesh, found, emb, basis, probes, vinfo.diameter, params, &mut timings);
+    timings.total = t_all.elapsed().as_secs_f64();
+    progress(1.0);
+    Ok(Detection {
+        vertices: mesh.info.input_vertices,
+        faces: mesh.info.input_triangles,
+        symmetries,
+        timings,
+        candidates: candidates.len(),
+    })
+}
+
+/// The report phase: the judge on the mesh (every map is now defined on its vertices), the
+/// symmetries strongest first in input indices with their order and functional maps, and
+/// their groups. Writes the characterize and cluster timings.
+#[allow(clippy::too_many_arguments)]
+fn report(mesh: &Mesh, mut found: Vec<Found>, emb: &crate::distance::BiharmonicEmbedding, basis: &Eigenbasis, probes: &[usize], diameter: f64, params: &Params, timings: &mut Timings) -> Vec<Symmetry> {
     let t = Instant::now();
     // The judge on the mesh (every map is now defined on its vertices): strongest first.
     let mesh_judge = Judge::new(&mesh.vertices, judge::vertex_normals(mesh), &mesh.adjacency(), mesh.area().sqrt(), &params.judge);
+    let n = mesh.num_vertices();
     for f in &mut found {
         f.verdict = mesh_judge.judge(&f.dense.map, f.distortion, params.max_distortion);
     }
     found.sort_by(|a, b| b.verdict.score.total_cmp(&a.verdict.score));
-    let order_tol = params.maps.accept * 2.0 * vinfo.diameter;
+    let order_tol = params.maps.accept * 2.0 * diameter;
     let mut symmetries: Vec<Symmetry> = found
         .into_iter()
         .map(|f| {
@@ -668,13 +689,23 @@ fn pipeline(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool)
         s.group = g;
     }
     timings.cluster = t.elapsed().as_secs_f64();
-    timings.total = t_all.elapsed().as_secs_f64();
-    progress(1.0);
-    Ok(Detection {
-        vertices: mesh.info.input_vertices,
-        faces: mesh.info.input_triangles,
-        symmetries,
-        timings,
-        candidates: candidates.len(),
-    })
+    symmetries
+}
+
+/// The hypotheses phase's second generator: the orientation-reversing functional map from the
+/// descriptors alone (`maps::orientation`), computed on the mesh, its point map on the maps'
+/// domain (`ctx`), with its seed and sample distortion; `None` when it cannot be computed or is
+/// mostly the identity.
+fn fmap_hypothesis(mesh: &Mesh, basis: &Eigenbasis, desc: &Mat<f64>, ctx: &Context<'_>, probes: &[usize], diameter: f64, params: &Params) -> Option<(maps::DenseMap, (usize, usize), f64)> {
+    if params.maps.orientation.k == 0 {
+        return None;
+    }
+    let c = maps::orientation::reversing_fmap(mesh, basis, desc, &params.maps.orientation)?;
+    let dense = maps::from_functional_map(ctx, &c, probes, &params.maps)?;
+    if ctx.verdict(&dense.map).is_some_and(|v| v.fixed > params.max_fixed) {
+        return None;
+    }
+    let distortion = characterize::sample_distortion(&dense.map, probes, ctx.emb, diameter);
+    let seed = (probes[0], dense.image[probes[0]]);
+    Some((dense, seed, distortion))
 }

@@ -203,10 +203,12 @@ fn run(cli: Cli) -> Result<(), intrinsym::Error> {
                     2 => "reflection-like (order 2)".to_string(),
                     o => format!("order {o}"),
                 };
+                let orientation = if s.verdict.reverses() { "reversing" } else { "preserving" };
                 println!(
-                    "  #{i}: {:<7} group {}  {order:<26} region {:>6} vertices  complexity {:.3}  distortion {:.4}  seed {} -> {}",
+                    "  #{i}: {:<7} group {}  {order:<26} {orientation:<10} score {:.3}  region {:>6} vertices  complexity {:.3}  distortion {:.4}  seed {} -> {}",
                     s.kind.as_str(),
                     s.group,
+                    s.verdict.score,
                     s.region_size,
                     s.complexity,
                     s.distortion,
