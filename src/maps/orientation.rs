@@ -135,10 +135,10 @@ pub fn reversing_fmap(mesh: &Mesh, basis: &Eigenbasis, desc: &Mat<f64>, params: 
         let mut s = Mat::<f64>::zeros(faces, k);
         for t in 0..faces {
             let mut gf = [0.0; 3];
-            for corner in 0..3 {
+            for (corner, hat) in geo.hat[t].iter().enumerate() {
                 let value = f[tri[t][corner] as usize];
-                for c in 0..3 {
-                    gf[c] += geo.hat[t][corner][c] * value;
+                for (g, h) in gf.iter_mut().zip(hat) {
+                    *g += h * value;
                 }
             }
             let r = cross(geo.normal[t], gf);
@@ -161,7 +161,7 @@ fn solve(a: &Mat<f64>, evals: &[f64], d_ops: &[Mat<f64>], g_ops: &[Mat<f64>], pa
     let p = a.ncols() as f64;
     let kk = k * k;
     let total = params.w_descr + params.w_lap + params.w_dcomm + params.w_orient;
-    if !(total > 0.0) {
+    if total.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
         return None;
     }
     // pyFM's normalisers (canonical_taus with k1 = k2 = K): the scale of each term.
