@@ -292,3 +292,21 @@ fn a_shape_without_symmetry_gets_no_global_symmetry() {
     let global: Vec<_> = d.symmetries.iter().filter(|s| s.kind == Kind::Global).map(|s| (s.verdict, s.distortion)).collect();
     assert!(global.is_empty(), "global symmetries reported: {global:?}");
 }
+
+/// A mesh whose triangles mix orientations (as users' meshes can) gets the same verdicts: the
+/// judge and the orientation operators orient the triangles consistently first.
+#[test]
+fn mixed_triangle_orientations_do_not_change_the_verdict() {
+    let c = shapes::quadruped(4, Pose::Walking, 0.0, 0);
+    let mut triangles = c.mesh.triangles.clone();
+    for t in triangles.iter_mut().step_by(3) {
+        t.swap(0, 1);
+    }
+    let mixed = Mesh::new(c.mesh.vertices.clone(), triangles, &MeshParams::default()).unwrap();
+    let (a, b) = (run(&c), detect(&mixed, &Params::default(), &mut |_| true).unwrap());
+    assert_eq!(a.symmetries.len(), b.symmetries.len());
+    for (s, t) in a.symmetries.iter().zip(&b.symmetries) {
+        assert_eq!(s.map, t.map);
+        assert!((s.verdict.score - t.verdict.score).abs() < 1e-12, "{:?} {:?}", s.verdict, t.verdict);
+    }
+}

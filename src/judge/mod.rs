@@ -105,10 +105,11 @@ fn norm(a: [f64; 3]) -> f64 {
     dot(a, a).sqrt()
 }
 
-/// Area-weighted unit vertex normals of a mesh (zero for a vertex whose faces are degenerate).
+/// Area-weighted unit vertex normals of a mesh, its triangles consistently oriented first
+/// ([`Mesh::oriented_triangles`]); zero for a vertex whose faces are degenerate.
 pub fn vertex_normals(mesh: &Mesh) -> Vec<[f64; 3]> {
     let mut normals = vec![[0.0f64; 3]; mesh.num_vertices()];
-    for t in &mesh.triangles {
+    for t in &mesh.oriented_triangles() {
         let p = t.map(|v| mesh.vertices[v as usize]);
         let n = cross(sub(p[1], p[0]), sub(p[2], p[0]));
         for &v in t {

@@ -75,10 +75,10 @@ struct FaceGeometry {
     hat: Vec<[[f64; 3]; 3]>,
 }
 
-fn face_geometry(mesh: &Mesh) -> FaceGeometry {
-    let m = mesh.num_triangles();
+fn face_geometry(mesh: &Mesh, triangles: &[[u32; 3]]) -> FaceGeometry {
+    let m = triangles.len();
     let (mut area, mut normal, mut hat) = (Vec::with_capacity(m), Vec::with_capacity(m), Vec::with_capacity(m));
-    for t in &mesh.triangles {
+    for t in triangles {
         let p = t.map(|v| mesh.vertices[v as usize]);
         let nv = cross(sub(p[1], p[0]), sub(p[2], p[0]));
         let twice = (nv[0] * nv[0] + nv[1] * nv[1] + nv[2] * nv[2]).sqrt();
@@ -106,7 +106,9 @@ pub fn reversing_fmap(mesh: &Mesh, basis: &Eigenbasis, desc: &Mat<f64>, params: 
     if k < 2 || desc.ncols() == 0 || desc.nrows() != n {
         return None;
     }
-    let geo = face_geometry(mesh);
+    // Consistently oriented triangles: the orientation operators need one orientation.
+    let tri = &mesh.oriented_triangles();
+    let geo = face_geometry(mesh, tri);
     let faces = mesh.num_triangles();
     let phi = basis.evecs.subcols(0, k);
     // Descriptors: evenly spaced energies, each scaled to unit M-norm.
@@ -121,7 +123,6 @@ pub fn reversing_fmap(mesh: &Mesh, basis: &Eigenbasis, desc: &Mat<f64>, params: 
     let mphi = Mat::<f64>::from_fn(n, k, |v, i| basis.mass[v] * phi[(v, i)]);
     let a = mphi.transpose() * &descr;
     // Per face: area-weighted mean of each eigenfunction, and the gradient of each.
-    let tri = &mesh.triangles;
     let phi_bar = Mat::<f64>::from_fn(faces, k, |t, i| geo.area[t] * tri[t].iter().map(|&v| phi[(v as usize, i)]).sum::<f64>() / 3.0);
     let grad_phi: [Mat<f64>; 3] = std::array::from_fn(|c| Mat::<f64>::from_fn(faces, k, |t, i| (0..3).map(|corner| geo.hat[t][corner][c] * phi[(tri[t][corner] as usize, i)]).sum()));
     // The descriptors' operators are independent: on all cores.

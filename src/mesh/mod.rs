@@ -335,6 +335,52 @@ impl Mesh {
         (off, edges.into_iter().map(|(_, b)| b).collect())
     }
 
+    /// The triangles with a consistent orientation: each connected patch takes the
+    /// orientation of its first triangle, propagated across shared edges (two triangles agree
+    /// when they traverse their shared edge in opposite directions). A user's mesh may mix
+    /// orientations; the Laplacian does not care, but the judge's normals and the orientation
+    /// operators do ([`crate::judge`], [`crate::maps::orientation`]). Across a non-manifold edge
+    /// the first neighbour found decides.
+    pub fn oriented_triangles(&self) -> Vec<[u32; 3]> {
+        let m = self.triangles.len();
+        let mut by_edge: std::collections::HashMap<(u32, u32), Vec<usize>> = std::collections::HashMap::with_capacity(3 * m);
+        for (f, t) in self.triangles.iter().enumerate() {
+            for k in 0..3 {
+                let (a, b) = (t[k], t[(k + 1) % 3]);
+                by_edge.entry((a.min(b), a.max(b))).or_default().push(f);
+            }
+        }
+        let directed = |t: &[u32; 3], a: u32, b: u32| (0..3).any(|k| t[k] == a && t[(k + 1) % 3] == b);
+        let mut out = self.triangles.clone();
+        let mut done = vec![false; m];
+        let mut queue = std::collections::VecDeque::new();
+        for root in 0..m {
+            if done[root] {
+                continue;
+            }
+            done[root] = true;
+            queue.push_back(root);
+            while let Some(f) = queue.pop_front() {
+                let t = out[f];
+                for k in 0..3 {
+                    let (a, b) = (t[k], t[(k + 1) % 3]);
+                    for &g in &by_edge[&(a.min(b), a.max(b))] {
+                        if done[g] {
+                            continue;
+                        }
+                        done[g] = true;
+                        // Agreeing neighbours traverse the edge b → a.
+                        if directed(&out[g], a, b) {
+                            out[g].swap(1, 2);
+                        }
+                        queue.push_back(g);
+                    }
+                }
+            }
+        }
+        out
+    }
+
     /// Length of the bounding-box diagonal.
     pub fn bbox_diagonal(&self) -> f64 {
         let mut lo = [f64::INFINITY; 3];
@@ -438,6 +484,27 @@ impl UnionFind {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn mixed_orientations_are_made_consistent() {
+        let sphere = crate::shapes::icosphere(2);
+        let mut flipped = sphere.triangles.clone();
+        for t in flipped.iter_mut().skip(1).step_by(3) {
+            t.swap(0, 1);
+        }
+        let mesh = Mesh::new(sphere.vertices.clone(), flipped, &MeshParams::default()).unwrap();
+        let fixed = mesh.oriented_triangles();
+        // Every edge of the closed surface is traversed once in each direction…
+        let mut directed: Vec<(u32, u32)> = fixed.iter().flat_map(|t| (0..3).map(move |k| (t[k], t[(k + 1) % 3]))).collect();
+        directed.sort_unstable();
+        let before = directed.len();
+        directed.dedup();
+        assert_eq!(directed.len(), before, "an edge traversed twice in one direction");
+        assert!(directed.iter().all(|&(a, b)| directed.binary_search(&(b, a)).is_ok()));
+        // …and the orientation is the first triangle's: here the original, outward one.
+        let same_cycle = |t: &[u32; 3], u: &[u32; 3]| (0..3).any(|r| (0..3).all(|k| t[k] == u[(k + r) % 3]));
+        assert!(fixed.iter().zip(&sphere.triangles).all(|(t, u)| same_cycle(t, u)));
+    }
 
     fn tet() -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
         (
