@@ -51,7 +51,8 @@ QString FilterIntrinsymPlugin::filterInfo(FilterIDType) const
            "<b>colour</b>: with <i>Correspondence</i>, a vertex and its image share a colour; with "
            "<i>Groups</i>, each symmetry's region is painted with its group colour; with "
            "<i>Quality</i>, a red-to-blue ramp of the confidence. One line per symmetry is logged "
-           "(kind, group, order, complexity, region size). Library: intrinsym "
+           "(kind, orientation, score, group, order, complexity, region size), strongest (highest "
+           "score) first. Library: intrinsym "
            + QString(sym_version()) + ".";
 }
 
@@ -138,9 +139,10 @@ bool FilterIntrinsymPlugin::applyFilter(QAction *, MeshDocument &md, const RichP
         syms[i] = sym_symmetry{};
         syms[i].struct_size = sizeof(sym_symmetry);
         sym_get_map(result, i, &syms[i]);
-        Log("Symmetry #%d: %s, group %u, order %u, complexity %.3f, region %d of %d vertices", int(i),
-            syms[i].kind == SYM_KIND_GLOBAL ? "global" : "partial", syms[i].group, syms[i].order, syms[i].complexity,
-            int(syms[i].region_size), int(verts.size()));
+        Log("Symmetry #%d: %s, orientation-%s, score %.3f, group %u, order %u, complexity %.3f, region %d of %d vertices",
+            int(i), syms[i].kind == SYM_KIND_GLOBAL ? "global" : "partial",
+            syms[i].reversal > 0.5 ? "reversing" : "preserving", syms[i].score, syms[i].group, syms[i].order,
+            syms[i].complexity, int(syms[i].region_size), int(verts.size()));
     }
     if (count == 0) Log("No intrinsic symmetry found.");
 
