@@ -181,7 +181,8 @@ pub struct Timings {
     pub maps: f64,
     /// Of which: profile maps of the candidates.
     pub maps_profile: f64,
-    /// Of which: the orientation-reversing functional map hypothesis.
+    /// The orientation-reversing functional map hypothesis (computed alongside the profile
+    /// maps: its time overlaps `maps_profile`).
     pub maps_fmap: f64,
     /// Of which: ZoomOut refinement.
     pub maps_refine: f64,
@@ -353,14 +354,18 @@ fn pipeline(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool)
         let distortion = characterize::sample_distortion(&dense.map, probes, emb, vinfo.diameter);
         Some((dense, anchors[0], distortion))
     };
-    let mut profiled: Vec<(maps::DenseMap, (usize, usize), f64)> = crate::parallel::map(&ranked, profile).into_iter().flatten().collect();
-    // The second hypothesis generator: the orientation-reversing functional map from the
-    // descriptors alone (`maps::orientation`), on the mesh, its point map on the domain. It
-    // competes with voting's hypotheses on equal terms.
-    let t_fmap = Instant::now();
-    let fmap_hypothesis = fmap_hypothesis(mesh, fine_basis, &desc, &ctx, probes, vinfo.diameter, params);
-    timings.maps_fmap = t_fmap.elapsed().as_secs_f64();
-    timings.maps_profile = t_stage.elapsed().as_secs_f64() - timings.maps_fmap;
+    // The second hypothesis generator, alongside voting's profile maps (a core that finishes
+    // its share of those takes it): the orientation-reversing functional map from the
+    // descriptors alone (`maps::orientation`), on the mesh, its point map on the domain.
+    let fmap = || {
+        let t = Instant::now();
+        (fmap_hypothesis(mesh, fine_basis, &desc, &ctx, probes, vinfo.diameter, params), t.elapsed().as_secs_f64())
+    };
+    let (profiled, (fmap_hypothesis, fmap_seconds)) = crate::parallel::join(|| crate::parallel::map(&ranked, profile), fmap);
+    let mut profiled: Vec<(maps::DenseMap, (usize, usize), f64)> = profiled.into_iter().flatten().collect();
+    // Both, and of which the functional map (its own time, overlapping the profile maps').
+    timings.maps_profile = t_stage.elapsed().as_secs_f64();
+    timings.maps_fmap = fmap_seconds;
     let t_stage = Instant::now();
     if !progress(0.8) {
         return Err(cancelled());
@@ -613,7 +618,9 @@ fn pipeline(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool)
     timings.maps_lift = t_stage.elapsed().as_secs_f64();
     timings.maps = t.elapsed().as_secs_f64();
 
-    let symmetries = report(mesh, found, emb, basis, probes, vinfo.diameter, params, &mut timings);
+    // Without a proxy the maps' domain is the mesh: its judge serves the report too.
+    let domain_judge = if proxy.is_none() { ctx.judge.as_ref().map(|j| &j.0) } else { None };
+    let symmetries = report(mesh, domain_judge, found, emb, basis, probes, vinfo.diameter, params, &mut timings);
     timings.total = t_all.elapsed().as_secs_f64();
     progress(1.0);
     Ok(Detection {
@@ -625,14 +632,22 @@ fn pipeline(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool)
     })
 }
 
-/// The report phase: the judge on the mesh (every map is now defined on its vertices), the
+/// The report phase: the judge on the mesh (every map is now defined on its vertices; the
+/// maps stage's own judge when its domain was the mesh), the
 /// symmetries strongest first in input indices with their order and functional maps, and
 /// their groups. Writes the characterize and cluster timings.
 #[allow(clippy::too_many_arguments)]
-fn report(mesh: &Mesh, mut found: Vec<Found>, emb: &crate::distance::BiharmonicEmbedding, basis: &Eigenbasis, probes: &[usize], diameter: f64, params: &Params, timings: &mut Timings) -> Vec<Symmetry> {
+fn report(mesh: &Mesh, domain_judge: Option<&Judge>, mut found: Vec<Found>, emb: &crate::distance::BiharmonicEmbedding, basis: &Eigenbasis, probes: &[usize], diameter: f64, params: &Params, timings: &mut Timings) -> Vec<Symmetry> {
     let t = Instant::now();
     // The judge on the mesh (every map is now defined on its vertices): strongest first.
-    let mesh_judge = Judge::new(&mesh.vertices, judge::vertex_normals(mesh), &mesh.adjacency(), mesh.area().sqrt(), &params.judge);
+    let built;
+    let mesh_judge = match domain_judge {
+        Some(j) => j,
+        None => {
+            built = Judge::new(&mesh.vertices, judge::vertex_normals(mesh), &mesh.adjacency(), mesh.area().sqrt(), &params.judge);
+            &built
+        }
+    };
     let n = mesh.num_vertices();
     for f in &mut found {
         f.verdict = mesh_judge.judge(&f.dense.map, f.distortion, params.max_distortion);
