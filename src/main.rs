@@ -198,10 +198,12 @@ fn run(cli: Cli) -> Result<(), intrinsym::Error> {
                 t.characterize + t.cluster
             );
             for (i, s) in det.symmetries.iter().enumerate() {
-                let order = match s.order {
-                    0 => "order ?".to_string(),
-                    2 => "reflection-like (order 2)".to_string(),
-                    o => format!("order {o}"),
+                // Order 2 is a reflection when it reverses orientation, a half-turn otherwise.
+                let order = match (s.order, s.verdict.reverses()) {
+                    (0, _) => "order ?".to_string(),
+                    (2, true) => "reflection-like (order 2)".to_string(),
+                    (2, false) => "half-turn (order 2)".to_string(),
+                    (o, _) => format!("order {o}"),
                 };
                 let orientation = if s.verdict.reverses() { "reversing" } else { "preserving" };
                 println!(
