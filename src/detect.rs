@@ -62,8 +62,10 @@ pub struct Params {
     /// average are rejected (default 0.04; the true mirror of the posed generated quadruped
     /// distorts by 0.017, bent legs being only approximately isometric).
     pub max_distortion: f64,
-    /// Maps that fix more than this fraction of the judge's stencil centres
-    /// ([`crate::judge::Verdict::fixed`]) are rejected as (mostly) the identity (default 0.75).
+    /// Maps that are locally the identity on more than this fraction of the judge's stencil
+    /// centres ([`crate::judge::Verdict::fixed`]) are rejected as (mostly) the identity
+    /// (default 0.75; the figures below were measured when `fixed` still counted every centre
+    /// that stays, flipped or not).
     /// This replaces a mean displacement threshold, which rejected the true mirror of flat,
     /// wide bodies (TOSCA cats move by 0.036–0.042 of the diameter under their mirror). Over
     /// shared/data every map with acc@0.05 ≥ 0.7 fixes at most 0.17; 0.5 rejected profile maps
