@@ -29,7 +29,7 @@ fn main() {
         let basis = Eigenbasis::compute(&mesh, &EigenParams::default()).expect("basis");
         let desc = wks(&basis, &WksParams::default());
         let t = std::time::Instant::now();
-        let c = orientation::reversing_fmap(&mesh, &basis, &desc, &orientation::OrientationParams::default()).expect("fmap");
+        let c = orientation::reversing_fmap(&mesh, &mesh.oriented_triangles(), &basis, &desc, &orientation::OrientationParams::default()).expect("fmap");
         let secs = t.elapsed().as_secs_f64();
         let adj = mesh.adjacency();
         let search: Vec<usize> = (0..mesh.num_vertices()).step_by(5).collect();

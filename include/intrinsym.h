@@ -165,7 +165,8 @@ typedef struct {
    */
   double reversal;
   /**
-   * Fraction of the surface the map (nearly) fixes (added in 0.2).
+   * Fraction of the surface where the map is locally the identity (points stay, orientation
+   * kept; added in 0.2).
    */
   double fixed;
 } sym_symmetry;

@@ -31,7 +31,7 @@ use crate::cluster;
 use crate::descriptors::{wks, WksParams};
 use crate::distance::biharmonic;
 use crate::error::Error;
-use crate::judge::{self, Judge, JudgeParams, Verdict};
+use crate::judge::{Judge, JudgeParams, Verdict};
 use crate::maps::{self, proxy::Proxy, Context, MapParams};
 use crate::mesh::Mesh;
 use crate::sampling::farthest_point;
@@ -319,7 +319,10 @@ fn pipeline(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool)
     // The judge on the maps' domain: the mesh, or the proxy graph with the mesh's normals at
     // its seeds.
     let scale = mesh.area().sqrt();
-    let normals = judge::vertex_normals(mesh);
+    // One consistent orientation of the triangles, for the normals and the orientation
+    // operators of the functional map hypothesis.
+    let oriented = mesh.oriented_triangles();
+    let normals = mesh.vertex_normals(&oriented);
     let domain_judge = match &proxy {
         Some(p) => Judge::new(&p.positions, p.seeds.iter().map(|&s| normals[s]).collect(), &p.adjacency, scale, &params.judge),
         None => Judge::new(&mesh.vertices, normals.clone(), &ctx.adjacency, scale, &params.judge),
@@ -361,7 +364,7 @@ fn pipeline(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool)
     // descriptors alone (`maps::orientation`), on the mesh, its point map on the domain.
     let fmap = || {
         let t = Instant::now();
-        (fmap_hypothesis(mesh, fine_basis, &desc, &ctx, probes, vinfo.diameter, params), t.elapsed().as_secs_f64())
+        (fmap_hypothesis(mesh, &oriented, fine_basis, &desc, &ctx, probes, vinfo.diameter, params), t.elapsed().as_secs_f64())
     };
     let (profiled, (fmap_hypothesis, fmap_seconds)) = crate::parallel::join(|| crate::parallel::map(&ranked, profile), fmap);
     let mut profiled: Vec<(maps::DenseMap, (usize, usize), f64)> = profiled.into_iter().flatten().collect();
@@ -393,10 +396,9 @@ fn pipeline(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool)
     // …and of one orientation type: a reflection and a rotation are never one symmetry, however
     // many samples they agree on (a human's mirror and its front↔back half-turn agree on the
     // thin limbs).
-    let same_as = |dense: &maps::DenseMap, found: &[Found], fraction: f64| {
-        let reverses = verdict(dense).reverses();
-        found.iter().position(|f| f.verdict.reverses() == reverses && agrees(&f.dense, dense, fraction))
-    };
+    // `reverses`: whether `dense` reverses orientation (its verdict, computed once per map).
+    let same_as = |dense: &maps::DenseMap, reverses: bool, found: &[Found], fraction: f64| found.iter().position(|f| f.verdict.reverses() == reverses && agrees(&f.dense, dense, fraction));
+    let reverses: Vec<bool> = profiled.iter().map(|h| verdict(&h.0).reverses()).collect();
     // Phase 2: refine (nearly) global maps, keep those that move points and preserve distances.
     let total = profiled.len().max(1);
     let mut refinements = 0;
@@ -404,7 +406,7 @@ fn pipeline(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool)
     // A refinement computed ahead of its turn, alongside the current one (speculation on the
     // second core: refine only depends on the map, so the result is the sequential one).
     let mut ahead: Option<(usize, maps::DenseMap)> = None;
-    let skip = |dense: &maps::DenseMap, found: &[Found]| same_as(dense, found, 0.8).is_some_and(|i| found[i].dense.refined);
+    let skip = |dense: &maps::DenseMap, reverses: bool, found: &[Found]| same_as(dense, reverses, found, 0.8).is_some_and(|i| found[i].dense.refined);
     let parallel = crate::parallel::available();
     // The order of work: by score, but a candidate that is none of the symmetries found so far
     // goes before the variants of found ones. Refining a variant can give a better version
@@ -414,7 +416,7 @@ fn pipeline(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool)
     let mut done = vec![false; profiled.len()];
     let order = |done: &[bool], found: &[Found]| -> Vec<usize> {
         let open: Vec<usize> = (0..done.len()).filter(|&i| !done[i]).collect();
-        let (novel, known): (Vec<usize>, Vec<usize>) = open.into_iter().partition(|&i| same_as(&profiled[i].0, found, 0.5).is_none());
+        let (novel, known): (Vec<usize>, Vec<usize>) = open.into_iter().partition(|&i| same_as(&profiled[i].0, reverses[i], found, 0.5).is_none());
         novel.into_iter().chain(known).collect()
     };
     for step in 0..profiled.len() {
@@ -428,9 +430,11 @@ fn pipeline(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool)
             break;
         }
         // Nearly the same as a refined map: refining it again would only reproduce that map.
-        if skip(&dense, &found) {
+        if skip(&dense, reverses[pi], &found) {
             continue;
         }
+        // The verdict of a refined map, known once its identity check has run.
+        let mut judged = None;
         if maps::refinable(&ctx, &dense, &params.maps) {
             if refinements == params.max_refinements || fruitless >= params.patience {
                 continue;
@@ -455,7 +459,7 @@ fn pipeline(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool)
                         .then(|| {
                             let upcoming = order(&done, &found);
                             let later = || upcoming.iter().copied().filter(|&j| maps::refinable(&ctx, &profiled[j].0, &params.maps) && !agrees(&profiled[j].0, &dense, 0.8));
-                            later().find(|&j| !skip(&profiled[j].0, &found)).or_else(|| later().next())
+                            later().find(|&j| !skip(&profiled[j].0, reverses[j], &found)).or_else(|| later().next())
                         })
                         .flatten();
                     match next {
@@ -475,18 +479,20 @@ fn pipeline(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool)
                 continue;
             }
             // Refinement can slide a poor candidate into the identity.
-            if verdict(&dense).fixed > params.max_fixed {
+            let v = verdict(&dense);
+            if v.fixed > params.max_fixed {
                 continue;
             }
+            judged = Some(v);
         }
         let distortion = characterize::sample_distortion(&dense.map, probes, emb, vinfo.diameter);
         if distortion > params.max_distortion {
             continue;
         }
         let complexity = characterize::complexity(&maps::functional_map(basis, &dense.map, params.maps.fmap_size), params.complexity_width);
-        let verdict = verdict(&dense);
+        let verdict = judged.unwrap_or_else(|| verdict(&dense));
         let candidate = Found { dense, seed, distortion, complexity, verdict };
-        match same_as(&candidate.dense, &found, 0.5) {
+        match same_as(&candidate.dense, verdict.reverses(), &found, 0.5) {
             Some(i) if !better(&candidate, &found[i]) => {}
             Some(i) => found[i] = candidate,
             None => {
@@ -576,7 +582,8 @@ fn pipeline(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool)
                     break;
                 }
                 let dense = maps::compose(&found[second].dense, &found[first].dense, probes);
-                if verdict(&dense).fixed > params.max_fixed {
+                let verdict = verdict(&dense);
+                if verdict.fixed > params.max_fixed {
                     continue;
                 }
                 // Errors of the two maps add up at most: a composition distorting more than its
@@ -590,10 +597,9 @@ fn pipeline(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool)
                 // region cut short where the map was hard), or a global one the composition
                 // beats (`better`: a noisy quadruped's diagonal leg map found directly, whose
                 // own compositions were junk), gives way to the composition.
-                let known = same_as(&dense, &found, 0.5);
+                let known = same_as(&dense, verdict.reverses(), &found, 0.5);
                 let complexity = characterize::complexity(&maps::functional_map(basis, &dense.map, params.maps.fmap_size), params.complexity_width);
                 let seed = (found[first].seed.0, dense.image[found[first].seed.0]);
-                let verdict = verdict(&dense);
                 let composed = Found { dense, seed, distortion, complexity, verdict };
                 match known {
                     Some(i) if found[i].dense.global && !better(&composed, &found[i]) => {}
@@ -621,8 +627,24 @@ fn pipeline(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool)
     timings.maps = t.elapsed().as_secs_f64();
 
     // Without a proxy the maps' domain is the mesh: its judge serves the report too.
-    let domain_judge = if proxy.is_none() { ctx.judge.as_ref().map(|j| &j.0) } else { None };
-    let symmetries = report(mesh, domain_judge, found, emb, basis, probes, vinfo.diameter, params, &mut timings);
+    // The judge on the mesh: without a proxy the maps' domain is the mesh and its judge serves;
+    // with one, a judge on the mesh's own graph and normals.
+    let (on_mesh, own_adjacency);
+    let mesh_judge = match (&proxy, &ctx.judge) {
+        (None, Some((domain, _, _))) => domain,
+        _ => {
+            let adjacency = match &proxy {
+                Some(p) => &p.mesh_adjacency,
+                None => {
+                    own_adjacency = mesh.adjacency();
+                    &own_adjacency
+                }
+            };
+            on_mesh = Judge::new(&mesh.vertices, normals, adjacency, scale, &params.judge);
+            &on_mesh
+        }
+    };
+    let symmetries = report(mesh, mesh_judge, found, emb, basis, probes, vinfo.diameter, params, &mut timings);
     timings.total = t_all.elapsed().as_secs_f64();
     progress(1.0);
     Ok(Detection {
@@ -634,22 +656,13 @@ fn pipeline(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool)
     })
 }
 
-/// The report phase: the judge on the mesh (every map is now defined on its vertices; the
-/// maps stage's own judge when its domain was the mesh), the
-/// symmetries strongest first in input indices with their order and functional maps, and
-/// their groups. Writes the characterize and cluster timings.
+/// The report phase: the verdicts of `mesh_judge`, the judge on the mesh (every map is now
+/// defined on its vertices), the symmetries strongest first in input indices with their order
+/// and functional maps, and their groups. Writes the characterize and cluster timings.
 #[allow(clippy::too_many_arguments)]
-fn report(mesh: &Mesh, domain_judge: Option<&Judge>, mut found: Vec<Found>, emb: &crate::distance::BiharmonicEmbedding, basis: &Eigenbasis, probes: &[usize], diameter: f64, params: &Params, timings: &mut Timings) -> Vec<Symmetry> {
+fn report(mesh: &Mesh, mesh_judge: &Judge, mut found: Vec<Found>, emb: &crate::distance::BiharmonicEmbedding, basis: &Eigenbasis, probes: &[usize], diameter: f64, params: &Params, timings: &mut Timings) -> Vec<Symmetry> {
     let t = Instant::now();
     // The judge on the mesh (every map is now defined on its vertices): strongest first.
-    let built;
-    let mesh_judge = match domain_judge {
-        Some(j) => j,
-        None => {
-            built = Judge::new(&mesh.vertices, judge::vertex_normals(mesh), &mesh.adjacency(), mesh.area().sqrt(), &params.judge);
-            &built
-        }
-    };
     let n = mesh.num_vertices();
     for f in &mut found {
         f.verdict = mesh_judge.judge(&f.dense.map, f.distortion, params.max_distortion);
@@ -713,11 +726,12 @@ fn report(mesh: &Mesh, domain_judge: Option<&Judge>, mut found: Vec<Found>, emb:
 /// descriptors alone (`maps::orientation`), computed on the mesh, its point map on the maps'
 /// domain (`ctx`), with its seed and sample distortion; `None` when it cannot be computed or is
 /// mostly the identity.
-fn fmap_hypothesis(mesh: &Mesh, basis: &Eigenbasis, desc: &Mat<f64>, ctx: &Context<'_>, probes: &[usize], diameter: f64, params: &Params) -> Option<(maps::DenseMap, (usize, usize), f64)> {
+#[allow(clippy::too_many_arguments)]
+fn fmap_hypothesis(mesh: &Mesh, oriented: &[[u32; 3]], basis: &Eigenbasis, desc: &Mat<f64>, ctx: &Context<'_>, probes: &[usize], diameter: f64, params: &Params) -> Option<(maps::DenseMap, (usize, usize), f64)> {
     if params.maps.orientation.k == 0 {
         return None;
     }
-    let c = maps::orientation::reversing_fmap(mesh, basis, desc, &params.maps.orientation)?;
+    let c = maps::orientation::reversing_fmap(mesh, oriented, basis, desc, &params.maps.orientation)?;
     let dense = maps::from_functional_map(ctx, &c, probes, &params.maps)?;
     if ctx.verdict(&dense.map).is_some_and(|v| v.fixed > params.max_fixed) {
         return None;

@@ -205,7 +205,7 @@ fn run(cli: Cli) -> Result<(), intrinsym::Error> {
                     (2, false) => "half-turn (order 2)".to_string(),
                     (o, _) => format!("order {o}"),
                 };
-                let orientation = if s.verdict.reverses() { "reversing" } else { "preserving" };
+                let orientation = s.verdict.orientation();
                 println!(
                     "  #{i}: {:<7} group {}  {order:<26} {orientation:<10} score {:.3}  region {:>6} vertices  complexity {:.3}  distortion {:.4}  seed {} -> {}",
                     s.kind.as_str(),

@@ -33,11 +33,10 @@ struct Row {
     seconds: f64,
     found: usize,
     rank: usize,
+    /// Every reported symmetry with its accuracy and the judge's terms, a TSV line each
+    /// (`--symmetries FILE`: the data the judge's design is checked on).
+    symmetries: Vec<String>,
 }
-
-/// Every reported symmetry of every shape with its accuracy and the judge's terms
-/// (`--symmetries FILE`): the data the judge's design is checked on.
-static SYMMETRY_ROWS: std::sync::Mutex<Vec<String>> = std::sync::Mutex::new(Vec::new());
 
 fn score(name: &str, mesh: &Mesh, truth: &[(usize, Vec<usize>)], params: &Params) -> Row {
     score_all(mesh, &[(name.to_string(), truth.to_vec())], params).remove(0)
@@ -89,12 +88,13 @@ fn score_all(mesh: &Mesh, truths: &[(String, Vec<(usize, Vec<usize>)>)], params:
         .map(|(name, truth)| {
             let mut best = (0.0, 0.0, 0usize);
             let mut first = (0.0, 0.0);
+            let mut symmetries = Vec::new();
             match &det {
                 Ok(d) => {
                     for (i, s) in d.symmetries.iter().enumerate() {
                         let a = eval::accuracy(mesh, &s.map, truth, &[0.05, 0.10]);
                         let v = &s.verdict;
-                        SYMMETRY_ROWS.lock().unwrap().push(format!(
+                        symmetries.push(format!(
                             "{name}\t{i}\t{:.4}\t{:.4}\t{}\t{}\t{:.4}\t{:.4}\t{:.4}\t{:.5}\t{:.4}\t{:.4}",
                             a[0], a[1], s.kind.as_str(), s.order, v.reversal, v.fixed, v.coverage, s.distortion, s.complexity, v.score
                         ));
@@ -120,6 +120,7 @@ fn score_all(mesh: &Mesh, truths: &[(String, Vec<(usize, Vec<usize>)>)], params:
                 seconds,
                 found,
                 rank: best.2,
+                symmetries,
             }
         })
         .collect()
@@ -379,7 +380,7 @@ fn main() {
     }
     if let Some(path) = symmetries_tsv {
         let mut out = String::from("shape\tindex\tacc05\tacc10\tkind\torder\treversal\tfixed\tcoverage\tdistortion\tcomplexity\tscore\n");
-        for line in SYMMETRY_ROWS.lock().unwrap().iter() {
+        for line in rows.iter().flat_map(|r| &r.symmetries) {
             out += line;
             out.push('\n');
         }

@@ -83,7 +83,8 @@ pub struct sym_symmetry {
     /// Fraction of small surface triangles whose orientation the map reverses: near 1 for a
     /// reflection, near 0 for a rotation (added in 0.2).
     pub reversal: f64,
-    /// Fraction of the surface the map (nearly) fixes (added in 0.2).
+    /// Fraction of the surface where the map is locally the identity (points stay, orientation
+    /// kept; added in 0.2).
     pub fixed: f64,
 }
 

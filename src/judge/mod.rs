@@ -77,6 +77,15 @@ impl Verdict {
         self.reversal > 0.5
     }
 
+    /// `"reversing"` or `"preserving"` (the JSON report's and the CLI's word).
+    pub fn orientation(&self) -> &'static str {
+        if self.reverses() {
+            "reversing"
+        } else {
+            "preserving"
+        }
+    }
+
     /// `|2r − 1|`: 1 for a map of one orientation type, 0 for an even mixture.
     pub fn coherence(&self) -> f64 {
         (2.0 * self.reversal - 1.0).abs()
@@ -108,24 +117,7 @@ fn norm(a: [f64; 3]) -> f64 {
 /// Area-weighted unit vertex normals of a mesh, its triangles consistently oriented first
 /// ([`Mesh::oriented_triangles`]); zero for a vertex whose faces are degenerate.
 pub fn vertex_normals(mesh: &Mesh) -> Vec<[f64; 3]> {
-    let mut normals = vec![[0.0f64; 3]; mesh.num_vertices()];
-    for t in &mesh.oriented_triangles() {
-        let p = t.map(|v| mesh.vertices[v as usize]);
-        let n = cross(sub(p[1], p[0]), sub(p[2], p[0]));
-        for &v in t {
-            let a = &mut normals[v as usize];
-            for d in 0..3 {
-                a[d] += n[d];
-            }
-        }
-    }
-    for n in &mut normals {
-        let l = norm(*n);
-        if l > 0.0 {
-            *n = n.map(|x| x / l);
-        }
-    }
-    normals
+    mesh.vertex_normals(&mesh.oriented_triangles())
 }
 
 impl Judge {

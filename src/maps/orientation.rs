@@ -102,14 +102,15 @@ fn face_geometry(mesh: &Mesh, triangles: &[[u32; 3]]) -> FaceGeometry {
 
 /// The `(K, K)` orientation-reversing functional map of `mesh` onto itself from its descriptors
 /// `desc` `(n, E)`, or `None` when the system is singular (a degenerate mesh) or `K < 2`.
-pub fn reversing_fmap(mesh: &Mesh, basis: &Eigenbasis, desc: &Mat<f64>, params: &OrientationParams) -> Option<Mat<f64>> {
+/// `triangles` are the mesh's, consistently oriented ([`Mesh::oriented_triangles`]: the
+/// orientation operators need one orientation).
+pub fn reversing_fmap(mesh: &Mesh, triangles: &[[u32; 3]], basis: &Eigenbasis, desc: &Mat<f64>, params: &OrientationParams) -> Option<Mat<f64>> {
     let n = mesh.num_vertices();
     let k = params.k.min(basis.k());
     if k < 2 || desc.ncols() == 0 || desc.nrows() != n {
         return None;
     }
-    // Consistently oriented triangles: the orientation operators need one orientation.
-    let tri = &mesh.oriented_triangles();
+    let tri = triangles;
     let geo = face_geometry(mesh, tri);
     let faces = mesh.num_triangles();
     let phi = basis.evecs.subcols(0, k);
@@ -258,7 +259,7 @@ mod tests {
         let mesh = &c.mesh;
         let basis = Eigenbasis::compute(mesh, &EigenParams { k: 40, ..Default::default() }).unwrap();
         let desc = wks(&basis, &WksParams::default());
-        let fmap = reversing_fmap(mesh, &basis, &desc, &OrientationParams::default()).expect("a map");
+        let fmap = reversing_fmap(mesh, &mesh.oriented_triangles(), &basis, &desc, &OrientationParams::default()).expect("a map");
         let search: Vec<usize> = (0..mesh.num_vertices()).collect();
         let image = super::super::spectral_init::point_map(&basis, &mesh.adjacency(), &fmap, &search);
         let scale = mesh.area().sqrt();

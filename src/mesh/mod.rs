@@ -381,6 +381,29 @@ impl Mesh {
         out
     }
 
+    /// Area-weighted unit vertex normals over `triangles` (the mesh's own, or
+    /// [`Mesh::oriented_triangles`]); zero for a vertex whose faces are all degenerate.
+    pub fn vertex_normals(&self, triangles: &[[u32; 3]]) -> Vec<[f64; 3]> {
+        let mut normals = vec![[0.0f64; 3]; self.num_vertices()];
+        for t in triangles {
+            let [a, b, c] = t.map(|i| self.vertices[i as usize]);
+            let (e1, e2) = (sub(b, a), sub(c, a));
+            let cr = [e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]];
+            for &i in t {
+                for d in 0..3 {
+                    normals[i as usize][d] += cr[d];
+                }
+            }
+        }
+        for v in &mut normals {
+            let r = norm_sq(*v).sqrt();
+            if r > 0.0 {
+                *v = v.map(|x| x / r);
+            }
+        }
+        normals
+    }
+
     /// Length of the bounding-box diagonal.
     pub fn bbox_diagonal(&self) -> f64 {
         let mut lo = [f64::INFINITY; 3];

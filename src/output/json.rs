@@ -36,7 +36,7 @@ pub fn to_json(det: &Detection, params: &Params) -> Value {
                 "complexity": s.complexity,
                 "distortion": s.distortion,
                 "score": s.verdict.score,
-                "orientation": if s.verdict.reverses() { "reversing" } else { "preserving" },
+                "orientation": s.verdict.orientation(),
                 "reversal": s.verdict.reversal,
                 "fixed": s.verdict.fixed,
                 "source": s.source,

@@ -296,21 +296,9 @@ impl Creature {
     }
 }
 
-/// Area-weighted unit vertex normals.
+/// Area-weighted unit vertex normals over the mesh's own triangles ([`Mesh::vertex_normals`]).
 pub fn vertex_normals(mesh: &Mesh) -> Vec<[f64; 3]> {
-    let mut nrm = vec![[0.0; 3]; mesh.num_vertices()];
-    for t in &mesh.triangles {
-        let [a, b, c] = t.map(|i| mesh.vertices[i as usize]);
-        let e1 = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-        let e2 = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
-        let cr = [e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]];
-        for &i in t {
-            for d in 0..3 {
-                nrm[i as usize][d] += cr[d];
-            }
-        }
-    }
-    nrm.into_iter().map(|v| { let r = dot3(v, v).sqrt().max(f64::MIN_POSITIVE); v.map(|x| x / r) }).collect()
+    mesh.vertex_normals(&mesh.triangles)
 }
 
 /// Pose of a [`quadruped`].
