@@ -5,10 +5,7 @@
 set -euo pipefail
 plugin=$1 mesh=$2 out=$3
 dir=$(mktemp -d)
-mkdir -p "$dir/plugins"
-cp /usr/bin/meshlab "$dir/"
-for p in /usr/lib/x86_64-linux-gnu/meshlab/plugins/*.so; do ln -s "$p" "$dir/plugins/"; done
-cp "$plugin" "$dir/plugins/"
+"$(cd "$(dirname "$0")" && pwd)/stage.sh" "$plugin" "$dir" /usr/bin/meshlab
 export LD_LIBRARY_PATH=/usr/lib/x86_64-linux-gnu/meshlab DISPLAY=:77
 Xvfb :77 -screen 0 1280x900x24 & xvfb=$!
 sleep 2

@@ -9,10 +9,7 @@ set -euo pipefail
 plugin=$1 work=$2 input=$3 mode=$4 truth=${5:-}
 here=$(cd "$(dirname "$0")" && pwd)
 rm -rf "$work"
-mkdir -p "$work/plugins"
-cp /usr/bin/meshlabserver "$work/"
-for p in /usr/lib/x86_64-linux-gnu/meshlab/plugins/*.so; do ln -s "$p" "$work/plugins/"; done
-cp "$plugin" "$work/plugins/"
+"$here/stage.sh" "$plugin" "$work" /usr/bin/meshlabserver
 export LD_LIBRARY_PATH=/usr/lib/x86_64-linux-gnu/meshlab
 set +e
 xvfb-run -a "$work/meshlabserver" -i "$input" -o "$work/out.ply" -m vc vq -s "$here/intrinsym.mlx" >"$work/log.txt" 2>&1
