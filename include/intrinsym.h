@@ -7,7 +7,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #define SYM_VERSION_MAJOR 0
-#define SYM_VERSION_MINOR 2
+#define SYM_VERSION_MINOR 3
 #define SYM_VERSION_PATCH 0
 
 
@@ -51,7 +51,7 @@ typedef enum {
   /**
    * An internal error (a caught panic); the library stays usable.
    */
-  SYM_STATUS_PANIC = 7,
+  SYM_STATUS_PANIC = 7
 } sym_status;
 
 /**
@@ -65,7 +65,7 @@ typedef enum {
   /**
    * Defined on a region (`map[v] == -1` outside it).
    */
-  SYM_KIND_PARTIAL = 1,
+  SYM_KIND_PARTIAL = 1
 } sym_kind;
 
 /**
@@ -173,7 +173,7 @@ typedef struct {
 
 #ifdef __cplusplus
 extern "C" {
-#endif // __cplusplus
+#endif /* __cplusplus */
 
 /**
  * Creates parameters with the defaults (100 eigenpairs, 64 samples, seed 0, automatic groups).
@@ -182,7 +182,8 @@ extern "C" {
 sym_params *sym_params_new(void);
 
 /**
- * Frees parameters from [`sym_params_new`]. NULL, or a pointer already freed, is a no-op.
+ * Frees parameters from [`sym_params_new`]. NULL, a handle already freed, or a handle of
+ * another type (a `sym_result`) is a no-op: nothing is freed.
  */
 void sym_params_free(sym_params *params);
 
@@ -290,13 +291,22 @@ size_t sym_vertex_count(const sym_result *result);
 sym_status sym_get_map(const sym_result *result, size_t index, sym_symmetry *out);
 
 /**
+ * Dimension of the continuous family of isometries the shape has: 0 for none (most shapes),
+ * 3 for a sphere, 1 for a surface of revolution (added in 0.3). When it is positive the
+ * result lists one map per orientation type, samples of that family, not every sample voting
+ * found. −1 for NULL or an invalid handle.
+ */
+int32_t sym_continuous_dimension(const sym_result *result);
+
+/**
  * Per-vertex symmetry summary (the largest confidence over all symmetries), `sym_vertex_count`
  * values borrowed from `result` until [`sym_free`]; NULL for NULL or an invalid handle.
  */
 const double *sym_vertex_symmetry(const sym_result *result);
 
 /**
- * Frees a result from [`sym_detect`]. NULL, or a pointer already freed, is a no-op.
+ * Frees a result from [`sym_detect`]. NULL, a handle already freed, or a handle of another
+ * type (a `sym_params`) is a no-op: nothing is freed.
  */
 void sym_free(sym_result *result);
 
@@ -312,10 +322,11 @@ void sym_free(sym_result *result);
 sym_status sym_last_error(char *buf, size_t len, size_t *out_len);
 
 /**
- * A static, NUL-terminated description of `status` (never NULL; unknown values give
- * "unknown status").
+ * A static, NUL-terminated description of `status` (never NULL; any other value, negative
+ * or too large, gives "unknown status"). It takes an `int`, not the enum, so that a value
+ * outside the enum is defined behaviour in Rust too (issue 16, item 7).
  */
-const char *sym_status_str(sym_status status);
+const char *sym_status_str(int status);
 
 /**
  * The library version (`"MAJOR.MINOR.PATCH"`, from Cargo.toml), a static NUL-terminated string.
@@ -328,7 +339,7 @@ const char *sym_version(void);
 uint32_t sym_abi_version(void);
 
 #ifdef __cplusplus
-}  // extern "C"
-#endif  // __cplusplus
+}  /* extern "C" */
+#endif  /* __cplusplus */
 
 #endif  /* INTRINSYM_H */

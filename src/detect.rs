@@ -14,7 +14,10 @@
 //! scores higher is kept; symmetries are reported by decreasing score. Complexity is the
 //! paper's characterisation (the symmetry line), not a selector. Finally the set is closed
 //! under composition: the composition of two global symmetries that is not the identity,
-//! preserves distances and is new is reported too.
+//! preserves distances and is new is reported too. A shape with a continuous family of
+//! isometries (a sphere, a surface of revolution; [`crate::characterize::continuous`]) says so
+//! in [`Detection::continuous`] and reports one map per orientation type, not the cap's worth
+//! of samples of the family.
 //!
 //! Why not the paper's selector (measured over `../shared/data`, 116 shapes, best-of acc@0.05;
 //! `docs/accuracy.md`): complexity preferred half-identities, whose functional maps are more
@@ -26,7 +29,7 @@ use std::time::Instant;
 
 use faer::Mat;
 
-use crate::characterize;
+use crate::characterize::{self, Continuous, ContinuousParams};
 use crate::cluster;
 use crate::descriptors::{wks, WksParams};
 use crate::distance::biharmonic;
@@ -89,6 +92,8 @@ pub struct Params {
     pub max_order: usize,
     /// The judge that ranks and selects maps ([`crate::judge`]).
     pub judge: JudgeParams,
+    /// The continuous-symmetry test ([`crate::characterize::continuous`]).
+    pub continuous: ContinuousParams,
 }
 
 impl Default for Params {
@@ -110,6 +115,7 @@ impl Default for Params {
             max_symmetries: 32,
             max_order: 12,
             judge: JudgeParams::default(),
+            continuous: ContinuousParams::default(),
         }
     }
 }
@@ -217,6 +223,11 @@ pub struct Detection {
     pub timings: Timings,
     /// Candidates voting produced (before map extraction and filtering).
     pub candidates: usize,
+    /// The continuous family of isometries, if the shape has one (a sphere: dimension 3; a
+    /// surface of revolution: 1). When it has, `symmetries` holds only the strongest map of
+    /// each orientation type (a sample of the family and of its mirror-image coset), not the
+    /// cap's worth of near-copies voting finds.
+    pub continuous: Continuous,
 }
 
 impl Detection {
@@ -242,22 +253,45 @@ struct Found {
 }
 
 /// Runs the pipeline; `progress(fraction)` returning `false` cancels with
-/// [`crate::spectral::SpectralError::Cancelled`].
+/// [`Error::Cancelled`], naming the stage that was running (also at the final call, fraction 1:
+/// a caller who says stop gets no result).
 ///
 /// `progress` is called on the calling thread, in order, and its answer is awaited (a GUI's
 /// callback may only touch its widgets there); the pipeline itself runs on a thread of the
 /// worker pool (rayon's global pool), whose other threads spin while it runs: waking a
 /// sleeping thread's virtual CPU took 0.3–4 ms on the 2-core VM. `INTRINSYM_SPIN=0` in the
 /// environment turns the spinning off.
+///
+/// A detection started from inside `progress` on the same thread is refused with
+/// [`Error::Reentrant`] (the first detection holds the worker pool while it waits for the
+/// callback, so the second could never run).
 pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool) -> Result<Detection, Error> {
-    crate::parallel::on_pool(progress, |relay| pipeline(mesh, params, relay))
+    thread_local! {
+        static IN_CALLBACK: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+    }
+    if IN_CALLBACK.get() {
+        return Err(Error::Reentrant);
+    }
+    /// Lowers the flag when the callback returns, or unwinds.
+    struct Lower;
+    impl Drop for Lower {
+        fn drop(&mut self) {
+            IN_CALLBACK.set(false);
+        }
+    }
+    let mut flagged = |f: f64| {
+        IN_CALLBACK.set(true);
+        let _lower = Lower;
+        progress(f)
+    };
+    crate::parallel::on_pool(&mut flagged, |relay| pipeline(mesh, params, relay))
 }
 
 /// [`detect`] on the current thread.
 fn pipeline(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool) -> Result<Detection, Error> {
     let t_all = Instant::now();
     let mut timings = Timings::default();
-    let cancelled = || Error::Spectral(crate::spectral::SpectralError::Cancelled);
+    let cancelled = |stage: &'static str| Error::Cancelled { stage };
     let n = mesh.num_vertices();
 
     let t = Instant::now();
@@ -278,14 +312,14 @@ fn pipeline(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool)
     let samples = farthest_point(&emb, params.samples, params.seed);
     timings.sampling = t.elapsed().as_secs_f64();
     if !progress(0.62) {
-        return Err(cancelled());
+        return Err(cancelled("descriptors"));
     }
 
     let t = Instant::now();
     let (candidates, vinfo, _sample_dist) = vote(&emb, &desc, &samples, &params.voting);
     timings.voting = t.elapsed().as_secs_f64();
     if !progress(0.65) {
-        return Err(cancelled());
+        return Err(cancelled("voting"));
     }
 
     let t = Instant::now();
@@ -348,7 +382,7 @@ fn pipeline(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool)
     // the best version of each symmetry is refined first and absorbs its variants.
     // Candidates are independent: their profile maps are computed on all cores.
     if !progress(0.66) {
-        return Err(cancelled());
+        return Err(cancelled("hypotheses"));
     }
     let profile = |cand: &&crate::voting::Candidate| {
         let anchors: Vec<(usize, usize)> = cand.pairs.iter().map(|&(a, b)| (probes[a], probes[b])).collect();
@@ -373,7 +407,7 @@ fn pipeline(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool)
     timings.maps_fmap = fmap_seconds;
     let t_stage = Instant::now();
     if !progress(0.8) {
-        return Err(cancelled());
+        return Err(cancelled("hypotheses"));
     }
     let nd = ctx.num_vertices();
     let score = |m: &maps::DenseMap, distortion: f64| m.region_size as f64 / nd as f64 - 10.0 * distortion;
@@ -424,7 +458,7 @@ fn pipeline(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool)
         done[pi] = true;
         let (mut dense, seed) = (profiled[pi].0.clone(), profiled[pi].1);
         if !progress(0.8 + 0.15 * step as f64 / total as f64) {
-            return Err(cancelled());
+            return Err(cancelled("refinement"));
         }
         if found.len() >= params.max_symmetries {
             break;
@@ -512,7 +546,7 @@ fn pipeline(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool)
         // Farthest-point sampling is incremental: these extend voting's samples.
         let anchors = &polish_anchors;
         if !progress(0.95) {
-            return Err(cancelled());
+            return Err(cancelled("polish"));
         }
         // The samples are the sources of every global map: their table is built once.
         geodesics.pin(anchors);
@@ -523,7 +557,7 @@ fn pipeline(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool)
         let cores = crate::parallel::cores();
         for round in found.chunks_mut(2 * cores) {
             if !progress(0.95) {
-                return Err(cancelled());
+                return Err(cancelled("polish"));
             }
             let polished = crate::parallel::map(round, |f: &Found| {
                 let mut dense = f.dense.clone();
@@ -644,15 +678,19 @@ fn pipeline(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool)
             &on_mesh
         }
     };
-    let symmetries = report(mesh, mesh_judge, found, emb, basis, probes, vinfo.diameter, params, &mut timings);
+    let continuous = characterize::continuous_symmetry(basis, &params.continuous);
+    let symmetries = report(mesh, mesh_judge, found, emb, basis, probes, vinfo.diameter, &continuous, params, &mut timings);
     timings.total = t_all.elapsed().as_secs_f64();
-    progress(1.0);
+    if !progress(1.0) {
+        return Err(cancelled("report"));
+    }
     Ok(Detection {
         vertices: mesh.info.input_vertices,
         faces: mesh.info.input_triangles,
         symmetries,
         timings,
         candidates: candidates.len(),
+        continuous,
     })
 }
 
@@ -660,7 +698,7 @@ fn pipeline(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool)
 /// defined on its vertices), the symmetries strongest first in input indices with their order
 /// and functional maps, and their groups. Writes the characterize and cluster timings.
 #[allow(clippy::too_many_arguments)]
-fn report(mesh: &Mesh, mesh_judge: &Judge, mut found: Vec<Found>, emb: &crate::distance::BiharmonicEmbedding, basis: &Eigenbasis, probes: &[usize], diameter: f64, params: &Params, timings: &mut Timings) -> Vec<Symmetry> {
+fn report(mesh: &Mesh, mesh_judge: &Judge, mut found: Vec<Found>, emb: &crate::distance::BiharmonicEmbedding, basis: &Eigenbasis, probes: &[usize], diameter: f64, continuous: &Continuous, params: &Params, timings: &mut Timings) -> Vec<Symmetry> {
     let t = Instant::now();
     // The judge on the mesh (every map is now defined on its vertices): strongest first.
     let n = mesh.num_vertices();
@@ -668,6 +706,14 @@ fn report(mesh: &Mesh, mesh_judge: &Judge, mut found: Vec<Found>, emb: &crate::d
         f.verdict = mesh_judge.judge(&f.dense.map, f.distortion, params.max_distortion);
     }
     found.sort_by(|a, b| b.verdict.score.total_cmp(&a.verdict.score));
+    if continuous.dimension > 0 {
+        // Every map found samples the continuous family or its coset: one of each type.
+        let (mut reversing, mut preserving) = (false, false);
+        found.retain(|f| {
+            let seen = if f.verdict.reverses() { &mut reversing } else { &mut preserving };
+            !std::mem::replace(seen, true)
+        });
+    }
     let order_tol = params.maps.accept * 2.0 * diameter;
     let mut symmetries: Vec<Symmetry> = found
         .into_iter()

@@ -19,6 +19,16 @@ pub enum Error {
     Io(IoError),
     /// The Laplace–Beltrami eigenproblem failed.
     Spectral(SpectralError),
+    /// The progress callback asked to stop; `stage` is the pipeline stage that was running
+    /// (or `"report"`, for a stop asked at the final call, fraction 1).
+    Cancelled {
+        /// The stage: "eigenbasis", "descriptors", "voting", "hypotheses", "refinement",
+        /// "polish" or "report".
+        stage: &'static str,
+    },
+    /// A detection was started from inside the progress callback of another detection on the
+    /// same thread (the first holds the worker pool while it waits for the callback).
+    Reentrant,
 }
 
 impl fmt::Display for Error {
@@ -27,6 +37,8 @@ impl fmt::Display for Error {
             Error::Mesh(e) => write!(f, "invalid mesh: {e}"),
             Error::Io(e) => write!(f, "{e}"),
             Error::Spectral(e) => write!(f, "eigensolver: {e}"),
+            Error::Cancelled { stage } => write!(f, "cancelled by the progress callback during the {stage} stage"),
+            Error::Reentrant => write!(f, "a detection cannot start inside the progress callback of another detection on the same thread; start it after that detection returns"),
         }
     }
 }
@@ -37,6 +49,7 @@ impl std::error::Error for Error {
             Error::Mesh(e) => Some(e),
             Error::Io(e) => Some(e),
             Error::Spectral(e) => Some(e),
+            Error::Cancelled { .. } | Error::Reentrant => None,
         }
     }
 }
@@ -53,6 +66,9 @@ impl From<IoError> for Error {
 }
 impl From<SpectralError> for Error {
     fn from(e: SpectralError) -> Self {
-        Error::Spectral(e)
+        match e {
+            SpectralError::Cancelled => Error::Cancelled { stage: "eigenbasis" },
+            e => Error::Spectral(e),
+        }
     }
 }

@@ -197,6 +197,12 @@ fn run(cli: Cli) -> Result<(), intrinsym::Error> {
                 t.maps,
                 t.characterize + t.cluster
             );
+            if det.continuous.dimension > 0 {
+                println!(
+                    "  a continuous symmetry: a {}-parameter family of isometries (Killing-field residual {:.1e}); one map of each orientation type is listed",
+                    det.continuous.dimension, det.continuous.residuals[0]
+                );
+            }
             for (i, s) in det.symmetries.iter().enumerate() {
                 // Order 2 is a reflection when it reverses orientation, a half-turn otherwise.
                 let order = match (s.order, s.verdict.reverses()) {

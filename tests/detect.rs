@@ -6,7 +6,6 @@
 //! 96.6%, rest 100% at acc@0.05) so that they catch regressions without flaking.
 
 use intrinsym::shapes::{self, Pose};
-use intrinsym::spectral::SpectralError;
 use intrinsym::{detect, eval, Error, Kind, Mesh, MeshParams, Params};
 
 fn mirror_truth(c: &shapes::Creature) -> Vec<(usize, Vec<usize>)> {
@@ -194,8 +193,38 @@ fn cancel_stops_with_an_error() {
         f < 0.3
     })
     .unwrap_err();
-    assert!(matches!(e, Error::Spectral(SpectralError::Cancelled)), "{e}");
+    assert!(matches!(e, Error::Cancelled { stage: "eigenbasis" }), "{e}");
     assert!(calls > 1);
+}
+
+/// Stopping at the final call (fraction 1) cancels too, and the error names the stage
+/// (issue 16, item 11: it was ignored, and every cancel said "eigensolver").
+#[test]
+fn cancel_at_the_last_call_and_the_stage_is_named() {
+    let c = shapes::quadruped(3, Pose::Rest, 0.0, 0);
+    let e = detect(&c.mesh, &Params::default(), &mut |f| f < 1.0).unwrap_err();
+    assert!(matches!(e, Error::Cancelled { stage: "report" }), "{e}");
+    assert!(e.to_string().contains("report") && !e.to_string().contains("eigensolver"), "{e}");
+    let e = detect(&c.mesh, &Params::default(), &mut |f| f < 0.7).unwrap_err();
+    assert!(matches!(e, Error::Cancelled { stage: "hypotheses" }), "{e}");
+}
+
+/// A detection started from inside another's progress callback returns an error at once
+/// instead of deadlocking (issue 16, item 10), and the outer detection completes.
+#[test]
+fn a_detection_inside_the_progress_callback_is_refused_not_deadlocked() {
+    let c = shapes::quadruped(3, Pose::Rest, 0.0, 0);
+    let mut inner = Vec::new();
+    let outer = detect(&c.mesh, &Params::default(), &mut |_| {
+        if inner.is_empty() {
+            inner.push(detect(&c.mesh, &Params::default(), &mut |_| true).map(|d| d.symmetries.len()));
+        }
+        true
+    });
+    assert!(outer.is_ok_and(|d| !d.symmetries.is_empty()));
+    assert!(matches!(inner[0], Err(Error::Reentrant)), "{:?}", inner[0]);
+    // And after it, detection works again on this thread.
+    assert!(detect(&c.mesh, &Params::default(), &mut |_| true).is_ok());
 }
 
 #[test]
@@ -308,5 +337,46 @@ fn mixed_triangle_orientations_do_not_change_the_verdict() {
     for (s, t) in a.symmetries.iter().zip(&b.symmetries) {
         assert_eq!(s.map, t.map);
         assert!((s.verdict.score - t.verdict.score).abs() < 1e-12, "{:?} {:?}", s.verdict, t.verdict);
+    }
+}
+
+/// An ellipsoid with three distinct axes has exactly 7 symmetries besides the identity: the
+/// three mirrors, the three half-turns and the antipodal map (issue 14, precision). Each is
+/// found, each once, and nothing else is reported.
+#[test]
+fn an_ellipsoid_reports_its_seven_symmetries_and_nothing_else() {
+    let mesh = shapes::ellipsoid(4, [1.0, 0.75, 0.5]);
+    let d = detect(&mesh, &Params::default(), &mut |_| true).unwrap();
+    assert_eq!(d.continuous.dimension, 0, "{:?}", d.continuous);
+    let flips: Vec<[bool; 3]> = (1..8u32).map(|b| [b & 1 != 0, b & 2 != 0, b & 4 != 0]).collect();
+    let truths: Vec<Vec<(usize, Vec<usize>)>> = flips
+        .iter()
+        .map(|&f| shapes::sign_flip_map(&mesh, f).into_iter().enumerate().map(|(v, w)| (v, vec![w.expect("a partner") as usize])).collect())
+        .collect();
+    let mut matched = vec![Vec::new(); flips.len()];
+    for (i, s) in d.symmetries.iter().enumerate() {
+        let accs: Vec<f64> = truths.iter().map(|t| eval::accuracy(&mesh, &s.map, t, &[0.05])[0]).collect();
+        let (best, acc) = accs.iter().enumerate().max_by(|a, b| a.1.total_cmp(b.1)).unwrap();
+        assert!(*acc > 0.9, "symmetry #{i} is none of the seven: acc {accs:?}");
+        // A reflection through a plane or the antipodal map (odd number of flips) reverses.
+        let reversing = flips[best].iter().filter(|&&f| f).count() % 2 == 1;
+        assert_eq!(s.verdict.reverses(), reversing, "#{i} ({:?}) has the wrong orientation type", flips[best]);
+        matched[best].push(i);
+    }
+    assert!(matched.iter().all(|m| m.len() == 1), "each of the seven exactly once: {matched:?}");
+}
+
+/// A sphere and a torus of revolution have a continuous family of isometries: the detection
+/// says so (dimension 3 and 1) and lists one map per orientation type instead of filling the
+/// cap with samples of the family (issue 14, precision).
+#[test]
+fn continuous_symmetries_are_reported_as_such() {
+    for (name, mesh, dimension) in [("sphere", shapes::icosphere(4), 3), ("torus of revolution", shapes::torus_of_revolution(72, 28, 0.4), 1)] {
+        let d = detect(&mesh, &Params::default(), &mut |_| true).unwrap();
+        assert_eq!(d.continuous.dimension, dimension, "{name}: {:?}", d.continuous);
+        assert!(d.continuous.residuals[0] < 0.01, "{name}: {:?}", d.continuous);
+        assert!((1..=2).contains(&d.symmetries.len()), "{name}: {} symmetries", d.symmetries.len());
+        let reversing = d.symmetries.iter().filter(|s| s.verdict.reverses()).count();
+        assert!(reversing <= 1 && d.symmetries.len() - reversing <= 1, "{name}: one map per orientation type");
     }
 }

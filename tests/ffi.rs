@@ -82,7 +82,7 @@ fn failures_leave_out_untouched_and_explain() {
     let st = unsafe { sym_detect(ptr::null(), 3, t.as_ptr(), 1, ptr::null(), None, ptr::null_mut(), &mut r) };
     assert_eq!(st, sym_status::SYM_STATUS_NULL_PARAMETER);
     assert!(last_error().contains("vertices"));
-    let msg = unsafe { CStr::from_ptr(sym_status_str(sym_status::SYM_STATUS_CANCELLED)) };
+    let msg = unsafe { CStr::from_ptr(sym_status_str(sym_status::SYM_STATUS_CANCELLED as i32)) };
     assert!(msg.to_str().unwrap().contains("cancel"));
     let version = unsafe { CStr::from_ptr(sym_version()) };
     assert_eq!(version.to_str().unwrap(), env!("CARGO_PKG_VERSION"));

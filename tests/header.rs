@@ -16,7 +16,30 @@ fn generate() -> String {
         .generate()
         .expect("cbindgen generates the header")
         .write(&mut out);
-    String::from_utf8(out).unwrap()
+    portable(&String::from_utf8(out).unwrap())
+}
+
+/// cbindgen writes C99/C++11 forms that `-std=c89 -pedantic-errors` and C++98 refuse (issue 16,
+/// item 15): a comma after an enum's last enumerator and `//` comments after `#endif` and `}`.
+/// A C library's header is often included by old code, so these are rewritten.
+fn portable(header: &str) -> String {
+    let lines: Vec<&str> = header.lines().collect();
+    let mut out = String::with_capacity(header.len());
+    for (i, line) in lines.iter().enumerate() {
+        let next = lines.get(i + 1).map(|l| l.trim());
+        let mut line = line.to_string();
+        if line.ends_with(',') && next.is_some_and(|n| n.starts_with('}')) {
+            line.pop();
+        }
+        let directive = line.starts_with("#endif") || line.starts_with('}');
+        if let Some(at) = line.find("//").filter(|_| directive) {
+            let (code, comment) = line.split_at(at);
+            line = format!("{}/* {} */", code, comment.trim_start_matches('/').trim());
+        }
+        out.push_str(&line);
+        out.push('\n');
+    }
+    out
 }
 
 #[test]

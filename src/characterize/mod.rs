@@ -16,6 +16,9 @@
 
 use faer::Mat;
 
+pub mod continuous;
+pub use continuous::{continuous_symmetry, Continuous, ContinuousParams};
+
 use crate::distance::BiharmonicEmbedding;
 
 /// `Σ W_ij |C_ij| / ‖C‖_F` with `W_ij = 1 − exp(−(i−j)²/(2 width²))`.

@@ -20,11 +20,15 @@ pub(crate) fn last_error() -> String {
 }
 
 /// Runs `body`, turning an error into its status (with the message recorded) and a panic into
-/// `SYM_STATUS_PANIC`. Clears the last error first, so it always describes this call.
+/// `SYM_STATUS_PANIC`. The last error always describes this call: empty after a success, even
+/// when the body called back into user code that made failing calls (issue 16, item 12).
 pub(crate) fn guard(body: impl FnOnce() -> Result<(), (sym_status, String)>) -> sym_status {
     set_error("");
     match catch_unwind(AssertUnwindSafe(body)) {
-        Ok(Ok(())) => sym_status::SYM_STATUS_OK,
+        Ok(Ok(())) => {
+            set_error("");
+            sym_status::SYM_STATUS_OK
+        }
         Ok(Err((status, message))) => {
             set_error(message);
             status

@@ -1,12 +1,13 @@
 //! Opaque handles and the entry points.
 //!
-//! Live handles are registered in a process-wide set: a pointer that this library did not hand
-//! out (or already freed) is refused with `SYM_STATUS_INVALID_ARGUMENT` instead of being
-//! dereferenced, and a second `sym_free`/`sym_params_free` of the same pointer is a no-op.
+//! Handles are not addresses: each is a serial number never reused, tagged with its type, and
+//! looked up in that type's registry. A value that is not a live handle of the expected type
+//! (freed, of the other type, or made up) is refused with `SYM_STATUS_INVALID_ARGUMENT` and a
+//! message that says which, instead of being dereferenced; freeing it is a no-op.
 
-use std::collections::HashSet;
+use std::collections::BTreeMap;
 use std::ffi::{c_char, c_int, c_void};
-use std::sync::{Mutex, OnceLock};
+use std::sync::Mutex;
 
 use super::boundary::{guard, guard_value, last_error, set_error};
 use super::status::{from_error, sym_status};
@@ -91,21 +92,55 @@ pub struct sym_symmetry {
 /// Progress callback: `fraction` in [0, 1]; return 0 to cancel, nonzero to continue.
 pub type sym_progress_fn = Option<unsafe extern "C" fn(fraction: f32, user_data: *mut c_void) -> c_int>;
 
-fn registry() -> &'static Mutex<HashSet<usize>> {
-    static LIVE: OnceLock<Mutex<HashSet<usize>>> = OnceLock::new();
-    LIVE.get_or_init(|| Mutex::new(HashSet::new()))
+/// The live handles of one type. A handle is not an address but a tag: a serial number
+/// (never reused in the process's life) shifted left by two, plus the type's tag in the low
+/// bits. So a handle of one type is never taken for the other (issue 16, item 8), and a freed
+/// handle never comes back to life when the allocator reuses its memory (item 9). The values
+/// live in boxes, which do not move: the views `sym_get_map` lends stay valid until the free.
+struct Registry<T> {
+    next: usize,
+    live: BTreeMap<usize, Box<T>>,
 }
 
-fn register(p: usize) {
-    registry().lock().unwrap_or_else(|e| e.into_inner()).insert(p);
+const PARAMS_TAG: usize = 1;
+const RESULT_TAG: usize = 2;
+
+static PARAMS: Mutex<Registry<sym_params>> = Mutex::new(Registry { next: 1, live: BTreeMap::new() });
+static RESULTS: Mutex<Registry<sym_result>> = Mutex::new(Registry { next: 1, live: BTreeMap::new() });
+
+impl<T> Registry<T> {
+    fn lock(m: &Mutex<Self>) -> std::sync::MutexGuard<'_, Self> {
+        m.lock().unwrap_or_else(|e| e.into_inner())
+    }
+
+    /// Stores `value`; its handle.
+    fn insert(m: &Mutex<Self>, tag: usize, value: T) -> usize {
+        let mut r = Self::lock(m);
+        let handle = (r.next << 2) | tag;
+        r.next += 1;
+        r.live.insert(handle, Box::new(value));
+        handle
+    }
+
+    /// The value of a live handle. The box's content does not move while it is registered.
+    fn get(m: &Mutex<Self>, handle: usize) -> Option<*mut T> {
+        Self::lock(m).live.get_mut(&handle).map(|b| &mut **b as *mut T)
+    }
+
+    fn remove(m: &Mutex<Self>, handle: usize) -> Option<Box<T>> {
+        Self::lock(m).live.remove(&handle)
+    }
 }
 
-fn is_live(p: usize) -> bool {
-    registry().lock().unwrap_or_else(|e| e.into_inner()).contains(&p)
-}
-
-fn unregister(p: usize) -> bool {
-    registry().lock().unwrap_or_else(|e| e.into_inner()).remove(&p)
+/// What a pointer that is not a live handle of the expected type is, for the message.
+fn describe(p: usize, expected: &str) -> String {
+    if p & 3 == PARAMS_TAG && Registry::get(&PARAMS, p).is_some() {
+        format!("a sym_params handle where a {expected} is expected")
+    } else if p & 3 == RESULT_TAG && Registry::get(&RESULTS, p).is_some() {
+        format!("a sym_result handle where a {expected} is expected")
+    } else {
+        format!("not a live {expected} (freed, or not from this library)")
+    }
 }
 
 type Fail = (sym_status, String);
@@ -123,30 +158,28 @@ fn params_ref<'a>(p: *const sym_params, name: &str) -> Result<&'a sym_params, Fa
     if p.is_null() {
         return Err(null(name));
     }
-    if !is_live(p as usize) {
-        return Err(invalid(format!("{name} is not a live sym_params (freed or not from sym_params_new)")));
-    }
-    // SAFETY: registered pointers come from Box::into_raw in sym_params_new and are removed
-    // before being freed.
-    Ok(unsafe { &*p })
+    let value = Registry::get(&PARAMS, p as usize).ok_or_else(|| invalid(format!("{name} is {}", describe(p as usize, "sym_params"))))?;
+    // SAFETY: a registered box, freed only by sym_params_free; the caller does not free a
+    // handle while another call uses it (documented).
+    Ok(unsafe { &*value })
 }
 
 fn params_mut<'a>(p: *mut sym_params) -> Result<&'a mut sym_params, Fail> {
     params_ref(p, "params")?;
+    let value = Registry::get(&PARAMS, p as usize).ok_or_else(|| invalid("params is not a live sym_params"))?;
     // SAFETY: as in params_ref; the caller must not share the handle across threads while
     // setting (documented).
-    Ok(unsafe { &mut *p })
+    Ok(unsafe { &mut *value })
 }
 
 fn result_ref<'a>(r: *const sym_result) -> Result<&'a sym_result, Fail> {
     if r.is_null() {
         return Err(null("result"));
     }
-    if !is_live(r as usize) {
-        return Err(invalid("result is not a live sym_result (freed or not from sym_detect)"));
-    }
-    // SAFETY: registered pointers come from Box::into_raw in sym_detect.
-    Ok(unsafe { &*r })
+    let value = Registry::get(&RESULTS, r as usize).ok_or_else(|| invalid(format!("result is {}", describe(r as usize, "sym_result"))))?;
+    // SAFETY: a registered box, freed only by sym_free; the caller does not free a handle
+    // while another call uses it (documented).
+    Ok(unsafe { &*value })
 }
 
 /// Creates parameters with the defaults (100 eigenpairs, 64 samples, seed 0, automatic groups).
@@ -154,21 +187,15 @@ fn result_ref<'a>(r: *const sym_result) -> Result<&'a sym_result, Fail> {
 #[no_mangle]
 pub extern "C" fn sym_params_new() -> *mut sym_params {
     guard_value(std::ptr::null_mut(), || {
-        let p = Box::into_raw(Box::new(sym_params { params: Params::default(), mesh: MeshParams::default() }));
-        register(p as usize);
-        p
+        Registry::insert(&PARAMS, PARAMS_TAG, sym_params { params: Params::default(), mesh: MeshParams::default() }) as *mut sym_params
     })
 }
 
-/// Frees parameters from [`sym_params_new`]. NULL, or a pointer already freed, is a no-op.
+/// Frees parameters from [`sym_params_new`]. NULL, a handle already freed, or a handle of
+/// another type (a `sym_result`) is a no-op: nothing is freed.
 #[no_mangle]
 pub extern "C" fn sym_params_free(params: *mut sym_params) {
-    guard_value((), || {
-        if !params.is_null() && unregister(params as usize) {
-            // SAFETY: the pointer was live, so it came from Box::into_raw and is freed once.
-            drop(unsafe { Box::from_raw(params) });
-        }
-    })
+    guard_value((), || drop(Registry::remove(&PARAMS, params as usize)))
 }
 
 /// Applies a checked setting to a live params handle.
@@ -311,8 +338,7 @@ pub unsafe extern "C" fn sym_detect(
             .collect();
         let pairs = det.symmetries.iter().map(|s| s.support_pairs.iter().flat_map(|&(a, b)| [a as i64, b as i64]).collect()).collect();
         let quality = det.vertex_symmetry();
-        let r = Box::into_raw(Box::new(sym_result { det, fmaps, pairs, quality }));
-        register(r as usize);
+        let r = Registry::insert(&RESULTS, RESULT_TAG, sym_result { det, fmaps, pairs, quality }) as *mut sym_result;
         // SAFETY: `out` is non-NULL and writable (caller contract).
         unsafe { *out = r };
         Ok(())
@@ -381,6 +407,15 @@ pub unsafe extern "C" fn sym_get_map(result: *const sym_result, index: usize, ou
     })
 }
 
+/// Dimension of the continuous family of isometries the shape has: 0 for none (most shapes),
+/// 3 for a sphere, 1 for a surface of revolution (added in 0.3). When it is positive the
+/// result lists one map per orientation type, samples of that family, not every sample voting
+/// found. −1 for NULL or an invalid handle.
+#[no_mangle]
+pub extern "C" fn sym_continuous_dimension(result: *const sym_result) -> i32 {
+    guard_value(-1, || result_ref(result).map_or(-1, |r| r.det.continuous.dimension as i32))
+}
+
 /// Per-vertex symmetry summary (the largest confidence over all symmetries), `sym_vertex_count`
 /// values borrowed from `result` until [`sym_free`]; NULL for NULL or an invalid handle.
 #[no_mangle]
@@ -388,15 +423,11 @@ pub extern "C" fn sym_vertex_symmetry(result: *const sym_result) -> *const f64 {
     guard_value(std::ptr::null(), || result_ref(result).map_or(std::ptr::null(), |r| r.quality.as_ptr()))
 }
 
-/// Frees a result from [`sym_detect`]. NULL, or a pointer already freed, is a no-op.
+/// Frees a result from [`sym_detect`]. NULL, a handle already freed, or a handle of another
+/// type (a `sym_params`) is a no-op: nothing is freed.
 #[no_mangle]
 pub extern "C" fn sym_free(result: *mut sym_result) {
-    guard_value((), || {
-        if !result.is_null() && unregister(result as usize) {
-            // SAFETY: the pointer was live, so it came from Box::into_raw and is freed once.
-            drop(unsafe { Box::from_raw(result) });
-        }
-    })
+    guard_value((), || drop(Registry::remove(&RESULTS, result as usize)))
 }
 
 /// Copies the calling thread's last error message (empty after a success) into `buf` (at most

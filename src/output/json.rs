@@ -6,6 +6,7 @@
 //!   "timings": { "spectral", "descriptors", "distance", "sampling", "voting", "maps",
 //!                "maps_proxy", "maps_profile", "maps_fmap", "maps_refine", "maps_polish", "maps_compose", "maps_lift",
 //!                "characterize", "cluster", "total" },           // seconds
+//!   "continuous": { "dimension": d, "residuals": [floats] },   // d > 0: a continuous family
 //!   "symmetries": [ { "id", "kind": "global"|"partial", "group", "order", "complexity",
 //!                     "distortion", "score", "orientation": "reversing"|"preserving",
 //!                     "reversal", "fixed", "source", "target", "support_pairs": [[a, b], …],
@@ -53,6 +54,7 @@ pub fn to_json(det: &Detection, params: &Params) -> Value {
     json!({
         "vertices": det.vertices,
         "faces": det.faces,
+        "continuous": { "dimension": det.continuous.dimension, "residuals": det.continuous.residuals },
         "params": {
             "eigenpairs": params.eigen.k,
             "samples": params.samples,

@@ -26,6 +26,54 @@ pub fn icosphere(level: u32) -> Mesh {
     build(v, t)
 }
 
+/// The icosphere of `level` scaled by `axes`: an ellipsoid (three distinct axes: 7 symmetries,
+/// the three mirrors, the three half-turns and the antipodal map, each an exact permutation of
+/// the vertices, since the icosphere is symmetric under each coordinate's sign flip) or a
+/// spheroid (two equal axes: a continuous family).
+pub fn ellipsoid(level: u32, axes: [f64; 3]) -> Mesh {
+    let (v, t) = icosphere_arrays(level);
+    build(v.into_iter().map(|p| [p[0] * axes[0], p[1] * axes[1], p[2] * axes[2]]).collect(), t)
+}
+
+/// The map `v ↦ the vertex at (±x, ±y, ±z)` of a mesh symmetric under coordinate sign flips
+/// (`flip[i]`: negate coordinate `i`); `None` for a vertex with no such partner.
+pub fn sign_flip_map(mesh: &Mesh, flip: [bool; 3]) -> Vec<Option<u32>> {
+    let key = |p: [f64; 3]| p.map(|x| (x * 1e6).round() as i64);
+    let index: std::collections::HashMap<[i64; 3], u32> = mesh.vertices.iter().enumerate().map(|(i, &p)| (key(p), i as u32)).collect();
+    mesh.vertices
+        .iter()
+        .map(|&p| {
+            let q = [0, 1, 2].map(|i| if flip[i] { -p[i] } else { p[i] });
+            index.get(&key(q)).copied()
+        })
+        .collect()
+}
+
+/// A torus of revolution (major radius 1, minor `minor`) on an `nu × nv` grid whose odd rings
+/// are turned by half a step (so the grid is not itself the only symmetry): a continuous
+/// family of rotations about its axis.
+pub fn torus_of_revolution(nu: usize, nv: usize, minor: f64) -> Mesh {
+    assert!(nu >= 3 && nv >= 3, "torus_of_revolution needs a grid of at least 3 × 3");
+    let tau = std::f64::consts::TAU;
+    let mut v = Vec::with_capacity(nu * nv);
+    for i in 0..nu {
+        for j in 0..nv {
+            let (th, ph) = (tau * i as f64 / nu as f64, tau * (j as f64 + 0.5 * (i % 2) as f64) / nv as f64);
+            let r = 1.0 + minor * ph.cos();
+            v.push([r * th.cos(), r * th.sin(), minor * ph.sin()]);
+        }
+    }
+    let at = |i: usize, j: usize| ((i % nu) * nv + j % nv) as u32;
+    let mut t = Vec::with_capacity(2 * nu * nv);
+    for i in 0..nu {
+        for j in 0..nv {
+            t.push([at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
+            t.push([at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
+        }
+    }
+    build(v, t)
+}
+
 fn normalize(p: [f64; 3]) -> [f64; 3] {
     let r = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
     [p[0] / r, p[1] / r, p[2] / r]

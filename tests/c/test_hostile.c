@@ -22,6 +22,41 @@ static int cancelling(float fraction, void *user_data) {
     return ++*n < cancel_after;
 }
 
+/* Returns 0 (stop) only at the final call, fraction 1 (issue 16, item 11). */
+static int stop_at_the_end(float fraction, void *user_data) {
+    (void)user_data;
+    return fraction < 1.0f;
+}
+
+/* Makes a failing call, then continues: the outer call's last error must not keep its message
+ * (issue 16, item 12). */
+static int fail_inside(float fraction, void *user_data) {
+    (void)fraction;
+    (void)sym_params_set_samples((sym_params *)user_data, 1);
+    return 1;
+}
+
+/* Starts a detection from inside the callback (issue 16, item 10): it must return, not
+ * deadlock, with a clear error; the outer detection goes on. */
+typedef struct {
+    int calls;
+    sym_status inner;
+    size_t message_length;
+} reentry;
+static int detect_inside(float fraction, void *user_data) {
+    static const double v[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+    static const uint32_t t[12] = {0, 2, 1, 0, 1, 3, 1, 2, 3, 0, 3, 2};
+    reentry *e = (reentry *)user_data;
+    sym_result *inner = NULL;
+    (void)fraction;
+    if (e->calls++ == 0) {
+        e->inner = sym_detect(v, 4, t, 4, NULL, NULL, NULL, &inner);
+        (void)sym_last_error(NULL, 0, &e->message_length);
+        sym_free(inner);
+    }
+    return 1;
+}
+
 static sym_status detect(const double *v, size_t nv, const uint32_t *t, size_t nt, const sym_params *p) {
     sym_result *r = NULL;
     sym_status s = sym_detect(v, nv, t, nt, p, NULL, NULL, &r);
@@ -158,6 +193,34 @@ int main(int argc, char **argv) {
     expect("cancel from progress callback", sym_detect(m.v, m.nv, m.t, m.nt, p, cancelling, &n, &r), SYM_STATUS_CANCELLED, 1);
     CHECK(r == NULL && n == 3, "cancel: out untouched, callback called %d times", n);
 
+    /* The final progress call (fraction 1) can cancel too, and the message names the stage. */
+    r = NULL;
+    expect("cancel at the final progress call", sym_detect(tet_v, 4, tet_t, 4, NULL, stop_at_the_end, NULL, &r), SYM_STATUS_CANCELLED, 1);
+    CHECK(r == NULL, "cancelled at the end: out untouched");
+    {
+        char message[256];
+        CHECK(sym_last_error(message, sizeof message, NULL) == SYM_STATUS_OK && strstr(message, "report") != NULL && strstr(message, "eigensolver") == NULL,
+              "the cancel message names the stage: %s", message);
+        cases++;
+    }
+    /* A failing call made inside the callback leaves no message after the outer success. */
+    {
+        sym_params *scratch = sym_params_new();
+        CHECK(sym_detect(tet_v, 4, tet_t, 4, NULL, fail_inside, scratch, &r) == SYM_STATUS_OK, "detect with a failing call inside");
+        CHECK(sym_last_error(NULL, 0, &len) == SYM_STATUS_OK && len == 0, "last error after a success is empty (%zu bytes)", len);
+        sym_free(r);
+        sym_params_free(scratch);
+        cases++;
+    }
+    /* A detection started inside the callback returns an error instead of deadlocking. */
+    {
+        reentry e = {0, SYM_STATUS_OK, 0};
+        CHECK(sym_detect(m.v, m.nv, m.t, m.nt, p, detect_inside, &e, &r) == SYM_STATUS_OK, "the outer detection goes on");
+        CHECK(e.inner == SYM_STATUS_INVALID_ARGUMENT && e.message_length > 0, "re-entrant detect: status %d, message %zu bytes", (int)e.inner, e.message_length);
+        sym_free(r);
+        cases++;
+    }
+
     /* A good result, then misuse of it. */
     CHECK(sym_detect(m.v, m.nv, m.t, m.nt, p, NULL, NULL, &good) == SYM_STATUS_OK, "good detect");
     memset(&s, 0, sizeof s);
@@ -176,10 +239,30 @@ int main(int argc, char **argv) {
         sym_free(bogus); /* not ours: ignored */
         cases++;
     }
+    /* Handles of one type passed as the other (issue 16, item 8): refused, nothing freed. */
+    expect("get_map on a params handle", sym_get_map((const sym_result *)(const void *)p, 0, &s), SYM_STATUS_INVALID_ARGUMENT, 1);
+    expect("setter on a result handle", sym_params_set_samples((sym_params *)(void *)good, 32), SYM_STATUS_INVALID_ARGUMENT, 1);
+    sym_free((sym_result *)(void *)p);
+    sym_params_free((sym_params *)(void *)good);
+    expect("params still live after sym_free(params)", sym_params_set_samples(p, 64), SYM_STATUS_OK, 0);
+    CHECK(sym_count(good) > 0 && sym_get_map(good, 0, &s) == SYM_STATUS_OK, "result still live after sym_params_free(result)");
+    cases++;
     sym_free(good);
     expect("get_map after free", sym_get_map(good, 0, &s), SYM_STATUS_INVALID_ARGUMENT, 1);
     sym_free(good); /* double free: no-op */
     cases++;
+    /* A freed handle stays dead when new results are made (issue 16, item 9). */
+    {
+        sym_result *fresh[4] = {NULL, NULL, NULL, NULL};
+        int i;
+        for (i = 0; i < 4; i++) {
+            CHECK(sym_detect(tet_v, 4, tet_t, 4, NULL, NULL, NULL, &fresh[i]) == SYM_STATUS_OK, "fresh result");
+            CHECK(fresh[i] != good, "a new handle equals a freed one");
+        }
+        expect("stale handle after new results", sym_get_map(good, 0, &s), SYM_STATUS_INVALID_ARGUMENT, 1);
+        CHECK(sym_count(good) == 0, "a stale handle has no symmetries");
+        for (i = 0; i < 4; i++) sym_free(fresh[i]);
+    }
 
     /* Last error: truncation and length query. */
     (void)sym_params_set_samples(p, 1);
@@ -189,6 +272,8 @@ int main(int argc, char **argv) {
     {
         int st;
         for (st = 0; st <= 7; st++) CHECK(sym_status_str((sym_status)st) != NULL && strlen(sym_status_str((sym_status)st)) > 0, "status_str");
+        /* Values outside the enum (issue 16, item 7). */
+        CHECK(strcmp(sym_status_str(-1), "unknown status") == 0 && strcmp(sym_status_str(1000000), "unknown status") == 0, "status_str out of range");
         cases++;
     }
 
