@@ -284,7 +284,9 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
         let _lower = Lower;
         progress(f)
     };
-    crate::parallel::on_pool(&mut flagged, |relay| pipeline(mesh, params, relay))
+    // Centred, unit area: results do not depend on units or position (`Mesh::normalized`).
+    let (mesh, _) = mesh.normalized();
+    crate::parallel::on_pool(&mut flagged, |relay| pipeline(&mesh, params, relay))
 }
 
 /// [`detect`] on the current thread.

@@ -45,3 +45,13 @@ pub use detect::{detect, Detection, Kind, Params, Symmetry};
 pub use error::Error;
 pub use mesh::{Mesh, MeshParams};
 pub use spectral::{Eigenbasis, EigenParams};
+
+/// A scratch folder for unit tests inside the build folder (next to the test binary, under
+/// `target/`): tests never write outside it.
+#[cfg(test)]
+pub(crate) fn test_dir(name: &str) -> std::path::PathBuf {
+    let exe = std::env::current_exe().expect("the test binary's path");
+    let dir = exe.parent().expect("a folder").join("intrinsym-test").join(format!("{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("a scratch folder in the build folder");
+    dir
+}

@@ -115,6 +115,7 @@ enum Shape {
 }
 
 fn main() -> ExitCode {
+    intrinsym::ffi::process::default_sigpipe();
     match run(Cli::parse()) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
@@ -258,7 +259,13 @@ fn run(cli: Cli) -> Result<(), intrinsym::Error> {
             let mesh = Mesh::new(raw.vertices, raw.triangles, &mp)?;
             let read_seconds = t.elapsed().as_secs_f64();
             let mut params = EigenParams::default();
-            params.k = k;
+            // As `detect` does: at most one eigenpair per vertex (issue 16, item 6).
+            let n = mesh.num_vertices();
+            params.k = k.min(n);
+            if params.k < k {
+                eprintln!("note: k = {k} is more than the mesh's {n} vertices; computing {n} eigenpairs");
+            }
+            let k = params.k;
             let basis = Eigenbasis::compute(&mesh, &params)?;
             let i = &basis.info;
             if json {

@@ -380,3 +380,22 @@ fn continuous_symmetries_are_reported_as_such() {
         assert!(reversing <= 1 && d.symmetries.len() - reversing <= 1, "{name}: one map per orientation type");
     }
 }
+
+/// Results do not depend on the mesh's units or position (issue 16, item 1): the same
+/// symmetries, with maps that agree on nearly every vertex, at scales 1e-9 … 1e9 and under a
+/// 1e6 translation.
+#[test]
+fn units_and_position_do_not_change_the_result() {
+    let c = shapes::quadruped(3, Pose::Walking, 0.0, 0);
+    let base = run(&c);
+    for (scale, shift) in [(1e-9, 0.0), (1e-3, 0.0), (1e3, 0.0), (1e9, 0.0), (1.0, 1e6)] {
+        let v: Vec<[f64; 3]> = c.mesh.vertices.iter().map(|p| p.map(|x| x * scale + shift)).collect();
+        let mesh = Mesh::new(v, c.mesh.triangles.clone(), &MeshParams::default()).unwrap();
+        let d = detect(&mesh, &Params::default(), &mut |_| true).unwrap();
+        assert_eq!(d.symmetries.len(), base.symmetries.len(), "scale {scale:e}, shift {shift:e}");
+        for (s, t) in d.symmetries.iter().zip(&base.symmetries) {
+            let same = s.map.iter().zip(&t.map).filter(|(a, b)| a == b).count();
+            assert!(same as f64 >= 0.98 * s.map.len() as f64, "scale {scale:e}, shift {shift:e}: {same} of {} vertices agree", s.map.len());
+        }
+    }
+}

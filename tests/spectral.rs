@@ -168,3 +168,20 @@ fn two_threads_give_the_single_thread_result() {
     assert_eq!(a.evals, b.evals);
     assert!((0..60).all(|j| a.evecs.col(j) == b.evecs.col(j)));
 }
+
+/// The basis is returned in the input's units whatever they are (issue 16, item 1: Lanczos
+/// failed to converge at ×1000 and ×1e-6): `λ·s²` does not depend on the scale `s`.
+#[test]
+fn eigenvalues_scale_as_the_inverse_square_of_the_units() {
+    let mesh = shapes::quadruped(3, shapes::Pose::Walking, 0.0, 0).mesh;
+    let base = Eigenbasis::compute(&mesh, &params(30, Solver::Lanczos)).unwrap();
+    for scale in [1e-9, 1e-6, 1e3, 1e6, 1e9] {
+        let v: Vec<[f64; 3]> = mesh.vertices.iter().map(|p| p.map(|x| x * scale + 1e6 * scale)).collect();
+        let scaled = intrinsym::Mesh::new(v, mesh.triangles.clone(), &intrinsym::MeshParams::default()).unwrap();
+        let b = Eigenbasis::compute(&scaled, &params(30, Solver::Lanczos)).unwrap();
+        for (i, (l, l0)) in b.evals.iter().zip(&base.evals).enumerate().skip(1) {
+            assert!((l * scale * scale / l0 - 1.0).abs() < 1e-6, "scale {scale:e}, λ{i}: {l:e} vs {l0:e}");
+        }
+        assert!((b.area / (scale * scale * base.area) - 1.0).abs() < 1e-9);
+    }
+}

@@ -18,6 +18,7 @@
 
 mod boundary;
 mod handle;
+pub mod process;
 mod status;
 mod version;
 

@@ -99,14 +99,42 @@ fn to_index(x: i64, line: usize) -> Result<u32, LineError> {
     u32::try_from(x).map_err(|_| (Some(line), format!("vertex index {x} is out of range")))
 }
 
-/// OFF (also COFF/NOFF/…): header, counts, vertices (extra columns ignored), polygons.
+/// The lines of a text mesh file, numbered from 1: a UTF-8 byte-order mark before the first is
+/// dropped (issue 16, item 5: an OBJ that starts with one lost its first vertex), a trailing
+/// `\r` too, and bytes that are not UTF-8 become U+FFFD instead of failing the file (a Latin-1
+/// comment is common; in a number they still fail, with the line named).
+fn text_lines(mut reader: impl BufRead) -> impl Iterator<Item = Result<(usize, String), LineError>> {
+    let mut number = 0;
+    std::iter::from_fn(move || {
+        let mut bytes = Vec::new();
+        match reader.read_until(b'\n', &mut bytes) {
+            Ok(0) => None,
+            Err(e) => Some(Err((Some(number + 1), e.to_string()))),
+            Ok(_) => {
+                number += 1;
+                let mut line: &[u8] = &bytes;
+                if number == 1 {
+                    line = line.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(line);
+                }
+                while let [rest @ .., b'\n' | b'\r'] = line {
+                    line = rest;
+                }
+                Some(Ok((number, String::from_utf8_lossy(line).into_owned())))
+            }
+        }
+    })
+}
+
+/// OFF (also COFF/NOFF/…): header, counts, vertices (extra columns ignored), polygons. A
+/// record after the counted faces is an error: the counts in the header are wrong, and faces
+/// would be dropped silently (issue 16, item 5).
 pub fn read_off(reader: impl BufRead) -> Result<RawMesh, LineError> {
     // Tokens with their line numbers, comments stripped.
     let mut tokens = Vec::new();
-    for (i, line) in reader.lines().enumerate() {
-        let line = line.map_err(|e| (Some(i + 1), e.to_string()))?;
+    for line in text_lines(reader) {
+        let (number, line) = line?;
         let line = line.split('#').next().unwrap_or("");
-        tokens.extend(line.split_whitespace().map(|t| (i + 1, t.to_owned())));
+        tokens.extend(line.split_whitespace().map(|t| (number, t.to_owned())));
     }
     // Group tokens back into lines: vertex and face records are one per line.
     let mut lines: Vec<(usize, Vec<String>)> = Vec::new();
@@ -156,15 +184,21 @@ pub fn read_off(reader: impl BufRead) -> Result<RawMesh, LineError> {
             .collect::<Result<Vec<_>, _>>()?;
         push_polygon(&mut mesh.triangles, &poly).map_err(|m| (Some(l), m))?;
     }
+    if let Some((l, _)) = it.next() {
+        return Err((Some(l), format!("a record after the {nf} faces the header counts: the header's counts are wrong (faces would be lost)")));
+    }
     Ok(mesh)
 }
 
 /// OBJ: `v x y z` and `f a b c …` records (`a`, `a/t`, `a//n`, `a/t/n`; negative = relative).
+/// Errors quote indices as the file writes them (1-based), and an index beyond the vertices is
+/// caught here, with its line, not later in 0-based terms.
 pub fn read_obj(reader: impl BufRead) -> Result<RawMesh, LineError> {
     let mut mesh = RawMesh::default();
-    for (i, line) in reader.lines().enumerate() {
-        let l = i + 1;
-        let line = line.map_err(|e| (Some(l), e.to_string()))?;
+    // Faces as written, resolved once every vertex is known.
+    let mut faces: Vec<(usize, Vec<(i64, String)>)> = Vec::new();
+    for line in text_lines(reader) {
+        let (l, line) = line?;
         let mut rec = line.split_whitespace();
         match rec.next() {
             Some("v") => {
@@ -181,14 +215,28 @@ pub fn read_obj(reader: impl BufRead) -> Result<RawMesh, LineError> {
                     .map(|s| {
                         let v = s.split('/').next().unwrap_or("");
                         let x: i64 = v.parse().map_err(|_| (Some(l), format!("bad face index {s:?}")))?;
-                        let x = if x < 0 { n + x } else { x - 1 };
-                        to_index(x, l)
+                        // Relative indices count back from the vertices read so far.
+                        Ok((if x < 0 { n + x + 1 } else { x }, v.to_string()))
                     })
-                    .collect::<Result<Vec<_>, _>>()?;
-                push_polygon(&mut mesh.triangles, &poly).map_err(|m| (Some(l), m))?;
+                    .collect::<Result<Vec<_>, LineError>>()?;
+                faces.push((l, poly));
             }
             _ => {}
         }
+    }
+    let n = mesh.vertices.len() as i64;
+    for (l, poly) in faces {
+        let poly = poly
+            .into_iter()
+            .map(|(x, written)| {
+                if (1..=n).contains(&x) {
+                    Ok((x - 1) as u32)
+                } else {
+                    Err((Some(l), format!("vertex index {written} is out of range: the file has vertices 1 to {n}")))
+                }
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        push_polygon(&mut mesh.triangles, &poly).map_err(|m| (Some(l), m))?;
     }
     Ok(mesh)
 }
@@ -198,7 +246,11 @@ pub fn read_obj(reader: impl BufRead) -> Result<RawMesh, LineError> {
 pub fn read_ply(mut reader: impl Read) -> Result<RawMesh, String> {
     use ply_rs_bw::parser::Parser;
     use ply_rs_bw::ply::{DefaultElement, Property};
-    let ply = Parser::<DefaultElement>::new().read_ply(&mut reader).map_err(|e| e.to_string())?;
+    let mut bytes = Vec::new();
+    reader.read_to_end(&mut bytes).map_err(|e| e.to_string())?;
+    let body = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(&bytes);
+    check_ply_counts(body)?;
+    let ply = Parser::<DefaultElement>::new().read_ply(&mut &body[..]).map_err(|e| e.to_string())?;
     let scalar = |p: &Property| -> Option<f64> {
         Some(match *p {
             Property::Char(x) => x as f64,
@@ -244,6 +296,55 @@ pub fn read_ply(mut reader: impl Read) -> Result<RawMesh, String> {
         }
     }
     Ok(mesh)
+}
+
+/// Refuses a PLY header whose element counts cannot fit in the file: the parser reserves memory
+/// for every declared record up front, so a 71-byte file declaring 4·10⁹ records aborted the
+/// process for lack of memory (issue 16, item 5). Each record takes at least one byte (its
+/// scalar properties' sizes and each list's count in binary; a separator per property in ASCII).
+fn check_ply_counts(bytes: &[u8]) -> Result<(), String> {
+    let end = bytes.windows(10).position(|w| w == b"end_header").ok_or("no 'end_header' line in the PLY header")?;
+    let header = String::from_utf8_lossy(&bytes[..end]);
+    let body_start = bytes[end..].iter().position(|&b| b == b'\n').map_or(bytes.len(), |i| end + i + 1);
+    let body = bytes.len() - body_start;
+    let binary = header.lines().any(|l| l.starts_with("format binary"));
+    let size = |t: &str| match t {
+        "char" | "uchar" | "int8" | "uint8" => 1,
+        "short" | "ushort" | "int16" | "uint16" => 2,
+        "int" | "uint" | "float" | "int32" | "uint32" | "float32" => 4,
+        "double" | "float64" => 8,
+        _ => 1,
+    };
+    // (name, count, least bytes per record)
+    let mut elements: Vec<(String, u64, u64)> = Vec::new();
+    for line in header.lines() {
+        let words: Vec<&str> = line.split_whitespace().collect();
+        match words.as_slice() {
+            ["element", name, count] => {
+                let count = count.parse::<u64>().map_err(|_| format!("element '{name}' has a bad count {count:?}"))?;
+                elements.push((name.to_string(), count, 0));
+            }
+            ["property", "list", count_type, _, _] => {
+                if let Some(e) = elements.last_mut() {
+                    e.2 += if binary { size(count_type) } else { 2 };
+                }
+            }
+            ["property", scalar, _] => {
+                if let Some(e) = elements.last_mut() {
+                    e.2 += if binary { size(scalar) } else { 2 };
+                }
+            }
+            _ => {}
+        }
+    }
+    let mut needed: u64 = 0;
+    for (name, count, least) in &elements {
+        needed = needed.saturating_add(count.saturating_mul((*least).max(1)));
+        if needed > body as u64 {
+            return Err(format!("the header declares {count} '{name}' records, more than the {body} bytes after the header can hold (a truncated or corrupt file)"));
+        }
+    }
+    Ok(())
 }
 
 /// Writes an ASCII OFF file (17 significant digits: coordinates round-trip exactly).
@@ -327,10 +428,49 @@ mod tests {
         assert!(read_ply("ply\nformat ascii 1.0\nend_header\n".as_bytes()).is_err());
     }
 
+    /// Issue 16, item 5: files as users have them.
+    #[test]
+    fn byte_order_marks_latin1_comments_and_wrong_counts() {
+        // A UTF-8 byte-order mark does not swallow the first vertex.
+        let s = "\u{feff}v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0.5\nf 1 2 3 4\n";
+        assert_eq!(read_obj(s.as_bytes()).unwrap(), quad());
+        let s = "\u{feff}OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0.5\n4 0 1 2 3\n";
+        assert_eq!(read_off(s.as_bytes()).unwrap(), quad());
+        // A Latin-1 byte in a comment is not an error; in a number it is, with its line.
+        let mut latin = b"OFF\n# caf\xE9\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0.5\n4 0 1 2 3\n".to_vec();
+        assert_eq!(read_off(&latin[..]).unwrap(), quad());
+        latin[17] = 0xE9;
+        assert_eq!(read_off(&latin[..]).unwrap_err().0, Some(4));
+        // More faces than the header counts: refused, not silently dropped.
+        let e = read_off("OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0.5\n3 0 1 2\n3 0 2 3\n".as_bytes()).unwrap_err();
+        assert_eq!(e.0, Some(8));
+        assert!(e.1.contains("header"), "{}", e.1);
+        // OBJ indices are quoted as written (1-based), with the line.
+        let e = read_obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n".as_bytes()).unwrap_err();
+        assert_eq!(e.0, Some(4));
+        assert!(e.1.contains("vertex index 4") && e.1.contains("1 to 3"), "{}", e.1);
+        let e = read_obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nf -1 -2 -4\n".as_bytes()).unwrap_err();
+        assert!(e.1.contains("vertex index -4"), "{}", e.1);
+    }
+
+    /// Issue 16, item 5: a 71-byte binary PLY whose header declares 4·10⁹ property-less
+    /// records aborted the process (the parser reserved 4.5 GB); it is refused.
+    #[test]
+    fn ply_counts_larger_than_the_file_are_refused() {
+        let bomb = b"ply\nformat binary_little_endian 1.0\nelement junk 4000000000\nend_header\n";
+        let e = read_ply(&bomb[..]).unwrap_err();
+        assert!(e.contains("4000000000") && e.contains("junk"), "{e}");
+        let short = "ply\nformat ascii 1.0\nelement vertex 1000\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 0 0\n";
+        assert!(read_ply(short.as_bytes()).unwrap_err().contains("vertex"));
+        // A byte-order mark and CRLF line ends are accepted.
+        let crlf = "\u{feff}ply\r\nformat ascii 1.0\r\nelement vertex 4\r\nproperty float x\r\nproperty float y\r\nproperty double z\r\n\
+                    element face 1\r\nproperty list uchar int vertex_indices\r\nend_header\r\n0 0 0\r\n1 0 0\r\n1 1 0\r\n0 1 0.5\r\n4 0 1 2 3\r\n";
+        assert_eq!(read_ply(crlf.as_bytes()).map_err(|e| e.to_string()), Ok(quad()));
+    }
+
     #[test]
     fn read_mesh_dispatches_and_reports_paths() {
-        let dir = std::env::temp_dir().join(format!("intrinsym-io-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
+        let dir = crate::test_dir("io");
         let off = dir.join("q.OFF");
         std::fs::write(&off, "OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0.5\n4 0 1 2 3\n").unwrap();
         assert_eq!(read_mesh(&off).unwrap(), quad());

@@ -119,6 +119,16 @@ pub enum MeshError {
     },
     /// The surface has zero total area.
     Degenerate,
+    /// One vertex lies so far from the others that, at its scale, every triangle is a point
+    /// (a stray coordinate such as 1e308 in an otherwise ordinary mesh).
+    Outlier {
+        /// Input index of the farthest vertex.
+        vertex: usize,
+        /// Its largest coordinate magnitude.
+        magnitude: f64,
+        /// The median vertex's largest coordinate magnitude.
+        typical: f64,
+    },
     /// Several connected components and [`ComponentPolicy::Reject`].
     Disconnected {
         /// Number of components.
@@ -151,6 +161,10 @@ impl fmt::Display for MeshError {
                 "edge ({a}, {b}) is shared by {triangles} triangles (non-manifold; at most 2 allowed)"
             ),
             MeshError::Degenerate => write!(f, "all triangles have zero area"),
+            MeshError::Outlier { vertex, magnitude, typical } => write!(
+                f,
+                "vertex {vertex} has a coordinate of magnitude {magnitude:e}, while a typical vertex's is {typical:e}: at that scale every triangle has zero area; remove or fix the stray vertex"
+            ),
             MeshError::Disconnected { components } => write!(
                 f,
                 "mesh has {components} connected components (process the largest with ComponentPolicy::Largest)"
@@ -220,15 +234,23 @@ impl Mesh {
             Err(_) => count_non_manifold_edges(&triangles),
         };
 
-        let areas: Vec<f64> = triangles.iter().map(|t| triangle_area(&vertices, t)).collect();
+        // Areas and degeneracy are measured on the coordinates divided by their largest
+        // magnitude: a triangle's squared-area arithmetic goes to the fourth power of the
+        // coordinates, which overflows from 1e77 and underflows below 1e-77 (issue 16, item 1).
+        let unit = vertices.iter().flat_map(|p| p.iter()).fold(0.0f64, |m, x| m.max(x.abs()));
+        if unit == 0.0 {
+            return Err(MeshError::Degenerate);
+        }
+        let unit_vertices: Vec<[f64; 3]> = vertices.iter().map(|p| p.map(|x| x / unit)).collect();
+        let areas: Vec<f64> = triangles.iter().map(|t| triangle_area(&unit_vertices, t)).collect();
         let degenerate = triangles
             .iter()
             .zip(&areas)
-            .filter(|(t, &a)| 2.0 * a <= DEGENERATE_REL * longest_edge_sq(&vertices, t))
+            .filter(|(t, &a)| 2.0 * a <= DEGENERATE_REL * longest_edge_sq(&unit_vertices, t))
             .count();
         let total_area: f64 = areas.iter().sum();
         if !(total_area > 0.0) || degenerate == m {
-            return Err(MeshError::Degenerate);
+            return Err(outlier(&vertices).unwrap_or(MeshError::Degenerate));
         }
 
         // Connected components of the triangles (through shared vertices).
@@ -275,7 +297,7 @@ impl Mesh {
         for (t, a) in triangles.iter().zip(&areas) {
             if uf.find(t[0] as usize) == keep_root {
                 kept_triangles.push([new_index[t[0] as usize], new_index[t[1] as usize], new_index[t[2] as usize]]);
-                if 2.0 * a <= DEGENERATE_REL * longest_edge_sq(&vertices, t) {
+                if 2.0 * a <= DEGENERATE_REL * longest_edge_sq(&unit_vertices, t) {
                     kept_degenerate += 1;
                 }
             }
@@ -305,6 +327,36 @@ impl Mesh {
     /// Number of processed triangles.
     pub fn num_triangles(&self) -> usize {
         self.triangles.len()
+    }
+
+    /// This mesh centred on its bounding box's centre and scaled to unit area, and the scale
+    /// `s` (input coordinates = `s` · these + centre). Intrinsic symmetry does not depend on
+    /// position or units, but floating point does: the pipeline works on this copy, so that a
+    /// mesh in millimetres, in kilometres or far from the origin gives the same result (issue
+    /// 16, item 1). Computed without overflow for any finite coordinates.
+    pub fn normalized(&self) -> (Mesh, f64) {
+        let unit = self.vertices.iter().flat_map(|p| p.iter()).fold(0.0f64, |m, x| m.max(x.abs()));
+        let unit = if unit > 0.0 { unit } else { 1.0 };
+        let mut lo = [f64::INFINITY; 3];
+        let mut hi = [f64::NEG_INFINITY; 3];
+        let mut q: Vec<[f64; 3]> = self.vertices.iter().map(|p| p.map(|x| x / unit)).collect();
+        for p in &q {
+            for d in 0..3 {
+                lo[d] = lo[d].min(p[d]);
+                hi[d] = hi[d].max(p[d]);
+            }
+        }
+        let centre = [0, 1, 2].map(|d| 0.5 * (lo[d] + hi[d]));
+        for p in &mut q {
+            *p = sub(*p, centre);
+        }
+        let area: f64 = self.triangles.iter().map(|t| triangle_area(&q, t)).sum();
+        let s = if area > 0.0 { area.sqrt() } else { 1.0 };
+        for p in &mut q {
+            *p = p.map(|x| x / s);
+        }
+        let mesh = Mesh { vertices: q, triangles: self.triangles.clone(), input_index: self.input_index.clone(), info: self.info.clone() };
+        (mesh, unit * s)
     }
 
     /// Total surface area.
@@ -418,6 +470,17 @@ impl Mesh {
     }
 }
 
+/// The stray vertex of a mesh whose largest coordinate is more than 10¹² times the median
+/// vertex's (issue 16, item 14), if any.
+fn outlier(vertices: &[[f64; 3]]) -> Option<MeshError> {
+    let magnitude = |p: &[f64; 3]| p.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    let mut sizes: Vec<f64> = vertices.iter().map(magnitude).collect();
+    let (vertex, &largest) = sizes.iter().enumerate().max_by(|a, b| a.1.total_cmp(b.1))?;
+    let middle = sizes.len() / 2;
+    let typical = *sizes.select_nth_unstable_by(middle, f64::total_cmp).1;
+    (largest > 1e12 * typical).then_some(MeshError::Outlier { vertex, magnitude: largest, typical })
+}
+
 fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }
@@ -507,6 +570,27 @@ impl UnionFind {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A stray vertex at 1e308 in an ordinary mesh is refused with a message that names it
+    /// (issue 16, item 14: it failed in the eigensolver with "NonPositivePivot"), while the
+    /// same mesh scaled as a whole to 1e300 or 1e-300 is accepted.
+    #[test]
+    fn a_stray_vertex_is_named_but_any_uniform_scale_is_accepted() {
+        let sphere = crate::shapes::icosphere(2);
+        let mut v = sphere.vertices.clone();
+        v[7] = [1e308, 0.0, 0.0];
+        match Mesh::new(v, sphere.triangles.clone(), &MeshParams::default()) {
+            Err(e @ MeshError::Outlier { vertex: 7, .. }) => assert!(e.to_string().contains("vertex 7"), "{e}"),
+            other => panic!("expected the outlier to be named: {other:?}"),
+        }
+        for scale in [1e300, 1e-300] {
+            let v: Vec<[f64; 3]> = sphere.vertices.iter().map(|p| p.map(|x| x * scale)).collect();
+            let mesh = Mesh::new(v, sphere.triangles.clone(), &MeshParams::default()).expect("a uniformly scaled mesh");
+            let (unit, s) = mesh.normalized();
+            assert!((unit.area() - 1.0).abs() < 1e-9, "unit area: {}", unit.area());
+            assert!((s / (scale * sphere.area().sqrt()) - 1.0).abs() < 1e-9, "scale {s:e}");
+        }
+    }
 
     #[test]
     fn mixed_orientations_are_made_consistent() {

@@ -111,7 +111,7 @@ mod tests {
         let colours = correspondence_colours(&mesh.vertices, &map);
         assert_eq!(colours[0], colours[1]);
         assert_eq!(colours[3], OUTSIDE);
-        let path = std::env::temp_dir().join(format!("intrinsym-ply-{}.ply", std::process::id()));
+        let path = crate::test_dir("ply").join("out.ply");
         write_ply(&path, &mesh, &colours, &[0.5, 0.5, 1.0, 0.0]).unwrap();
         let back = read_mesh(&path).unwrap();
         assert_eq!(back.triangles, mesh.triangles);

@@ -98,11 +98,22 @@ impl Eigenbasis {
         progress: &mut dyn FnMut(f64) -> bool,
     ) -> Result<Eigenbasis, SpectralError> {
         let t = Instant::now();
-        let lengths = cotan::mollified_edge_lengths(mesh);
-        let laplacian = cotan::cotan_laplacian(mesh, &lengths);
-        let mass = mass::lumped_mass(mesh, &lengths);
+        // The eigenproblem is solved on the mesh scaled to unit area (the solver's shift and
+        // tolerances are absolute numbers), and its answer returned in the input's units:
+        // with `x = s·x̂`, `λ = λ̂/s²`, `φ = φ̂/s` (M-orthonormal), `M = s²·M̂`; the cotangent
+        // Laplacian does not depend on scale. A mesh in millimetres or in kilometres gets the
+        // same basis up to these factors (issue 16, item 1).
+        let (unit, s) = mesh.normalized();
+        let lengths = cotan::mollified_edge_lengths(&unit);
+        let laplacian = cotan::cotan_laplacian(&unit, &lengths);
+        let unit_mass = mass::lumped_mass(&unit, &lengths);
         let assembly_seconds = t.elapsed().as_secs_f64();
-        let (evals, evecs, info) = eigen::eigen(&laplacian, &mass, params, progress)?;
+        let (mut evals, mut evecs, info) = eigen::eigen(&laplacian, &unit_mass, params, progress)?;
+        if s != 1.0 {
+            evals.iter_mut().for_each(|l| *l /= s * s);
+            evecs.col_iter_mut().for_each(|c| c.iter_mut().for_each(|x| *x /= s));
+        }
+        let mass: Vec<f64> = unit_mass.iter().map(|m| m * s * s).collect();
         let area = mass.iter().sum();
         Ok(Eigenbasis { evals, evecs, mass, laplacian, area, info, assembly_seconds })
     }

@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
-# Installs the build into a temporary prefix, then builds examples/c/detect.c against it with
-# find_package (CMake) and with pkg-config, and runs both on the bundled quadruped.
+# Installs the build into a prefix inside the build folder (tests never write outside it), then
+# builds examples/c/detect.c against it with find_package (CMake) and with pkg-config, and runs
+# both on the bundled quadruped.
 set -euo pipefail
 build=$1 src=$2 mesh=$3
-prefix=$(mktemp -d)
-trap 'rm -rf "$prefix"' EXIT
+prefix="$build/installed-package"
+rm -rf "$prefix"
+mkdir -p "$prefix"
 cmake --install "$build" --prefix "$prefix" >/dev/null
 cmake -S "$src/examples/c" -B "$prefix/example-build" -DCMAKE_PREFIX_PATH="$prefix" >/dev/null
 cmake --build "$prefix/example-build" >/dev/null
