@@ -17,6 +17,13 @@
 #define SYM_ABI_VERSION 1
 
 /**
+ * Welding tolerance relative to the bounding-box diagonal: far below any mesh's edge length
+ * (a 10⁶-vertex scan's edges are about 10⁻³ of its diagonal), far above float32 rounding of
+ * a written coordinate (about 10⁻⁷ of the coordinates' magnitude is the largest error).
+ */
+#define WELD_REL 1e-6
+
+/**
  * Result of every fallible `sym_` function.
  */
 typedef enum {
@@ -171,6 +178,53 @@ typedef struct {
   double fixed;
 } sym_symmetry;
 
+/**
+ * What validating the mesh found and decided (added in 0.3). Set `struct_size =
+ * sizeof(sym_mesh_report)` before calling [`sym_get_mesh_report`].
+ */
+typedef struct {
+  /**
+   * Size of this struct as the caller knows it.
+   */
+  size_t struct_size;
+  /**
+   * Vertices in the input arrays.
+   */
+  size_t input_vertices;
+  /**
+   * Triangles in the input arrays.
+   */
+  size_t input_triangles;
+  /**
+   * Vertices used by no triangle (ignored: map −1, confidence 0).
+   */
+  size_t isolated_vertices;
+  /**
+   * Connected components of the input.
+   */
+  size_t components;
+  /**
+   * Vertices of the components that were not processed (only the largest is).
+   */
+  size_t ignored_component_vertices;
+  /**
+   * Edges shared by more than two triangles (accepted).
+   */
+  size_t non_manifold_edges;
+  /**
+   * Zero-area triangles (kept).
+   */
+  size_t degenerate_triangles;
+  /**
+   * Vertices welded to a coincident one (they get its map).
+   */
+  size_t welded_vertices;
+  /**
+   * Triangles that welding collapsed (dropped).
+   */
+  size_t collapsed_triangles;
+} sym_mesh_report;
+
 #ifdef __cplusplus
 extern "C" {
 #endif /* __cplusplus */
@@ -238,10 +292,17 @@ sym_status sym_params_set_groups(sym_params *params,
 sym_status sym_params_set_proxy_vertices(sym_params *params, size_t value);
 
 /**
- * Nonzero: accept edges shared by more than two triangles (default 0: refuse them). Returns `SYM_STATUS_INVALID_ARGUMENT` (settings unchanged) outside the range.
+ * Nonzero: accept edges shared by more than two triangles (default 1 since 0.3: accept them,
+ * with the Laplacian of the tufted cover); 0: refuse them with `SYM_STATUS_INVALID_MESH`.
  */
-sym_status sym_params_set_allow_non_manifold(sym_params *params,
-                                             int value);
+sym_status sym_params_set_allow_non_manifold(sym_params *params, int value);
+
+/**
+ * Nonzero: weld coincident vertices (default 1: vertices closer than 10⁻⁶ of the bounding-box
+ * diagonal are one, as in an STL-style triangle soup; a welded vertex gets the map of the
+ * vertex it joined); 0: keep them apart (added in 0.3).
+ */
+sym_status sym_params_set_weld(sym_params *params, int value);
 
 /**
  * Nonzero: refuse meshes with several connected components (default 0: use the largest). Returns `SYM_STATUS_INVALID_ARGUMENT` (settings unchanged) outside the range.
@@ -297,6 +358,30 @@ sym_status sym_get_map(const sym_result *result, size_t index, sym_symmetry *out
  * found. −1 for NULL or an invalid handle.
  */
 int32_t sym_continuous_dimension(const sym_result *result);
+
+/**
+ * Fills `*out` with what validating the mesh found and decided (welded vertices,
+ * non-manifold edges, ignored components and isolated vertices), so that a host can tell its
+ * user (added in 0.3). `out->struct_size` must be set.
+ *
+ * # Safety
+ * `out` must point to a writable `sym_mesh_report` whose `struct_size` is initialised.
+ */
+sym_status sym_get_mesh_report(const sym_result *result, sym_mesh_report *out);
+
+/**
+ * Writes `3 * num_vertices` bytes of `rgb`: the colours the command-line tool and the MeshLab
+ * filter paint a map with, a vertex and its image alike (a symmetric function of their
+ * positions; vertices with `map[v] < 0` or out of range are grey 150). `xyz` holds
+ * `3 * num_vertices` coordinates and `map` `num_vertices` images (added in 0.3).
+ *
+ * # Safety
+ * `xyz`, `map` and `rgb` must point to arrays of the stated lengths.
+ */
+sym_status sym_correspondence_colours(const double *xyz,
+                                      size_t num_vertices,
+                                      const int64_t *map,
+                                      uint8_t *rgb);
 
 /**
  * Per-vertex symmetry summary (the largest confidence over all symmetries), `sym_vertex_count`

@@ -1,6 +1,5 @@
 #include "filter_intrinsym.h"
 
-#include <cmath>
 #include <vector>
 
 #include "intrinsym.h"
@@ -30,6 +29,22 @@ QString last_error() {
     return QString::fromUtf8(buf);
 }
 
+// FNV-1a over bytes: the fingerprint of a detection's input.
+void fnv(unsigned long long &h, const void *data, size_t n) {
+    const unsigned char *b = static_cast<const unsigned char *>(data);
+    for (size_t i = 0; i < n; ++i) {
+        h ^= b[i];
+        h *= 1099511628211ULL;
+    }
+}
+
+// An integer parameter checked against its range, with a message that names it.
+bool in_range(int value, int lo, int hi, const char *name, QString &message) {
+    if (value >= lo && value <= hi) return true;
+    message = QString("%1: %2 is out of range (%3 to %4).").arg(name).arg(value).arg(lo).arg(hi);
+    return false;
+}
+
 }  // namespace
 
 FilterIntrinsymPlugin::FilterIntrinsymPlugin()
@@ -37,6 +52,8 @@ FilterIntrinsymPlugin::FilterIntrinsymPlugin()
     typeList << FP_INTRINSIC_SYMMETRY;
     for (FilterIDType tt : types()) actionList << new QAction(filterName(tt), this);
 }
+
+FilterIntrinsymPlugin::~FilterIntrinsymPlugin() { sym_free(cached); }
 
 QString FilterIntrinsymPlugin::pluginName() const { return "FilterIntrinsym"; }
 
@@ -113,25 +130,73 @@ bool FilterIntrinsymPlugin::applyFilter(QAction *, MeshDocument &md, const RichP
     }
     if (tri.empty()) return fail("needs a triangle mesh: this mesh has no faces (a point cloud?).");
 
-    sym_params *params = sym_params_new();
-    sym_status st = SYM_STATUS_OK;
+    // Every parameter is checked here, with its name and range in the message (MeshLab's
+    // dialog takes any integer and any enum index a script gives).
+    QString bad;
     const int eigenpairs = par.getInt("eigenpairs"), samples = par.getInt("samples"), seed = par.getInt("seed"), proxy = par.getInt("proxyVertices");
-    if (st == SYM_STATUS_OK) st = eigenpairs > 0 ? sym_params_set_eigenpairs(params, size_t(eigenpairs)) : SYM_STATUS_INVALID_ARGUMENT;
-    if (st == SYM_STATUS_OK) st = samples > 0 ? sym_params_set_samples(params, size_t(samples)) : SYM_STATUS_INVALID_ARGUMENT;
+    const int show = par.getEnum("show"), index = par.getInt("index"), colouring = par.getEnum("colouring");
+    if (!in_range(eigenpairs, 3, 1000, "Eigenpairs", bad) || !in_range(samples, 8, 1000, "Samples", bad) ||
+        !in_range(seed, 0, 2147483647, "Seed", bad) || !in_range(proxy, 0, 1000000, "Proxy vertices", bad) ||
+        !in_range(show, SHOW_STRONGEST, SHOW_INDEX, "Show (0 Strongest, 1 All, 2 Index)", bad) ||
+        !in_range(colouring, COLOUR_CORRESPONDENCE, COLOUR_QUALITY, "Colouring (0 Correspondence, 1 Groups, 2 Quality)", bad) ||
+        (show == SHOW_INDEX && !in_range(index, 0, 2147483647, "Index", bad)))
+        return fail(bad);
+    sym_params *params = sym_params_new();
+    if (params == nullptr) return fail("out of memory.");
+    // The setters check the rest (the float ranges, proxy vertices 1 to 999) and say which.
+    sym_status st = sym_params_set_eigenpairs(params, size_t(eigenpairs));
+    if (st == SYM_STATUS_OK) st = sym_params_set_samples(params, size_t(samples));
     if (st == SYM_STATUS_OK) st = sym_params_set_wks_quantile(params, par.getFloat("wksQuantile"));
     if (st == SYM_STATUS_OK) st = sym_params_set_voting_eps(params, par.getFloat("votingEps"));
     if (st == SYM_STATUS_OK) st = sym_params_set_accept(params, par.getFloat("accept"));
-    if (st == SYM_STATUS_OK) st = sym_params_set_seed(params, uint64_t(seed < 0 ? 0 : seed));
-    if (st == SYM_STATUS_OK) st = proxy >= 0 ? sym_params_set_proxy_vertices(params, size_t(proxy)) : SYM_STATUS_INVALID_ARGUMENT;
+    if (st == SYM_STATUS_OK) st = sym_params_set_seed(params, uint64_t(seed));
+    if (st == SYM_STATUS_OK) st = sym_params_set_proxy_vertices(params, size_t(proxy));
+    // Non-manifold edges are accepted and coincident vertices welded (the library's defaults).
+    // There is deliberately no parameter for either: MeshLab 2020.09's meshlabserver aborts
+    // (an assertion) on a script that does not list every parameter of a filter, so a new
+    // parameter would crash every saved script (docs/meshlab.md).
     if (st != SYM_STATUS_OK) {
         sym_params_free(params);
         return fail(QString("invalid parameter: ") + last_error());
     }
+    // The fingerprint of this detection's input: the packed mesh and every detection
+    // parameter (not Show, Index or Colouring, which only choose what is painted).
+    unsigned long long key = 14695981039346656037ULL;
+    fnv(key, xyz.data(), xyz.size() * sizeof(double));
+    fnv(key, tri.data(), tri.size() * sizeof(uint32_t));
+    const float floats[3] = {par.getFloat("wksQuantile"), par.getFloat("votingEps"), par.getFloat("accept")};
+    const int ints[4] = {eigenpairs, samples, seed, proxy};
+    fnv(key, floats, sizeof floats);
+    fnv(key, ints, sizeof ints);
     sym_result *result = nullptr;
-    Progress state{cb};
-    st = sym_detect(xyz.data(), verts.size(), tri.data(), tri.size() / 3, params, progress, &state, &result);
-    sym_params_free(params);
-    if (st != SYM_STATUS_OK) return fail(QString("failed (") + sym_status_str(st) + "): " + last_error());
+    if (cached != nullptr && cachedKey == key) {
+        result = cached;
+        Log("Intrinsic Symmetry: reusing the last detection (same mesh and detection parameters).");
+        sym_params_free(params);
+    } else {
+        Progress state{cb};
+        st = sym_detect(xyz.data(), verts.size(), tri.data(), tri.size() / 3, params, progress, &state, &result);
+        sym_params_free(params);
+        if (st != SYM_STATUS_OK) return fail(QString("failed (") + sym_status_str(st) + "): " + last_error());
+        sym_free(cached);
+        cached = result;
+        cachedKey = key;
+    }
+    {
+        // What validation found and decided, so that nothing is dropped silently.
+        sym_mesh_report info{};
+        info.struct_size = sizeof info;
+        if (sym_get_mesh_report(result, &info) == SYM_STATUS_OK) {
+            Log("Mesh: %d vertices, %d triangles; %d coincident vertices welded (%d triangles collapsed); %d unreferenced vertices ignored; "
+                "%d components, %d vertices of the smaller ones ignored (left grey, quality 0); %d non-manifold edges; %d zero-area triangles",
+                int(info.input_vertices), int(info.input_triangles), int(info.welded_vertices), int(info.collapsed_triangles),
+                int(info.isolated_vertices), int(info.components), int(info.ignored_component_vertices), int(info.non_manifold_edges),
+                int(info.degenerate_triangles));
+        }
+        const int dimension = sym_continuous_dimension(result);
+        if (dimension > 0)
+            Log("A continuous symmetry: a %d-parameter family of isometries; one map of each orientation type is listed.", dimension);
+    }
 
     const size_t count = sym_count(result);
     std::vector<sym_symmetry> syms(count);
@@ -146,31 +211,26 @@ bool FilterIntrinsymPlugin::applyFilter(QAction *, MeshDocument &md, const RichP
     }
     if (count == 0) Log("No intrinsic symmetry found.");
 
-    const int show = par.getEnum("show");
-    const int index = par.getInt("index");
-    if (show == SHOW_INDEX && (index < 0 || size_t(index) >= count)) {
-        sym_free(result);
-        return fail(QString("index %1 is out of range: %2 symmetries were found.").arg(index).arg(count));
-    }
+    if (show == SHOW_INDEX && size_t(index) >= count)
+        return fail(QString("Index: %1 is out of range: %2 symmetries were found (0 to %3).").arg(index).arg(count).arg(int(count) - 1));
     const sym_symmetry *chosen = count == 0 ? nullptr : &syms[show == SHOW_INDEX ? size_t(index) : 0];
     const double *summary = sym_vertex_symmetry(result);
 
     mm->updateDataMask(MeshModel::MM_VERTQUALITY | MeshModel::MM_VERTCOLOR);
-    const int colouring = par.getEnum("colouring");
-    vcg::Box3<CMeshO::ScalarType> box = m.bbox;
+    // Correspondence colours come from the library (one implementation for the CLI's PLY and
+    // this filter): a vertex and its image alike, also where their midpoint is the same
+    // everywhere (a sphere's antipodal map).
+    std::vector<unsigned char> rgb;
+    if (colouring == COLOUR_CORRESPONDENCE && chosen) {
+        rgb.resize(3 * verts.size());
+        if (sym_correspondence_colours(xyz.data(), verts.size(), chosen->map, rgb.data()) != SYM_STATUS_OK) rgb.clear();
+    }
     for (size_t i = 0; i < verts.size(); ++i) {
         const double q = show == SHOW_ALL ? summary[i] : (chosen ? chosen->confidence[i] : 0.0);
         verts[i]->Q() = CMeshO::ScalarType(q);
         vcg::Color4b c(150, 150, 150, 255);
-        if (colouring == COLOUR_CORRESPONDENCE && chosen && chosen->map[i] >= 0) {
-            const auto &p = verts[i]->cP();
-            const auto &t = verts[size_t(chosen->map[i])]->cP();
-            for (int k = 0; k < 3; ++k) {
-                const double mid = 0.5 * (double(p[k]) + double(t[k]));
-                const double ext = double(box.max[k] - box.min[k]);
-                const double x = ext > 0 ? (mid - double(box.min[k])) / ext : 0.5;
-                c[k] = (unsigned char)(40.0 + 200.0 * std::fmin(1.0, std::fmax(0.0, x)));
-            }
+        if (!rgb.empty()) {
+            c = vcg::Color4b(rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2], 255);
         } else if (colouring == COLOUR_GROUPS) {
             for (size_t s = 0; s < count; ++s) {
                 if (show != SHOW_ALL && &syms[s] != chosen) continue;
@@ -184,7 +244,6 @@ bool FilterIntrinsymPlugin::applyFilter(QAction *, MeshDocument &md, const RichP
         verts[i]->C() = c;
     }
     if (colouring == COLOUR_QUALITY) vcg::tri::UpdateColor<CMeshO>::PerVertexQualityRamp(m, 0.0f, 1.0f);
-    sym_free(result);
     return true;
 }
 

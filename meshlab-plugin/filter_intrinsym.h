@@ -6,6 +6,8 @@
 
 #include <common/interfaces.h>
 
+#include "intrinsym.h"
+
 class FilterIntrinsymPlugin : public QObject, public MeshFilterInterface
 {
     Q_OBJECT
@@ -16,6 +18,7 @@ public:
     enum { FP_INTRINSIC_SYMMETRY };
 
     FilterIntrinsymPlugin();
+    ~FilterIntrinsymPlugin();
 
     QString pluginName() const;
     QString filterName(FilterIDType filter) const;
@@ -26,6 +29,13 @@ public:
     int postCondition(QAction *) const;
     void initParameterSet(QAction *, MeshModel &m, RichParameterList &parlst);
     bool applyFilter(QAction *action, MeshDocument &md, const RichParameterList &par, vcg::CallBackPos *cb);
+
+private:
+    // The last detection and the fingerprint of what it was computed from (the packed mesh
+    // and the detection parameters): a re-run with only the colouring or the shown symmetry
+    // changed (MeshLab's Preview re-applies the filter on every change) reuses it.
+    sym_result *cached = nullptr;
+    unsigned long long cachedKey = 0;
 };
 
 #endif

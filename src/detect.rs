@@ -223,6 +223,9 @@ pub struct Detection {
     pub timings: Timings,
     /// Candidates voting produced (before map extraction and filtering).
     pub candidates: usize,
+    /// What validating the mesh found and decided (welded vertices, non-manifold edges,
+    /// ignored components, …).
+    pub mesh: crate::mesh::MeshInfo,
     /// The continuous family of isometries, if the shape has one (a sphere: dimension 3; a
     /// surface of revolution: 1). When it has, `symmetries` holds only the strongest map of
     /// each orientation type (a sample of the family and of its mirror-image coset), not the
@@ -692,6 +695,7 @@ fn pipeline(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool)
         symmetries,
         timings,
         candidates: candidates.len(),
+        mesh: mesh.info.clone(),
         continuous,
     })
 }
@@ -732,6 +736,11 @@ fn report(mesh: &Mesh, mesh_judge: &Judge, mut found: Vec<Found>, emb: &crate::d
                     map[to_input(v)] = to_input(f.dense.map[v] as usize) as i64;
                     confidence[to_input(v)] = f.dense.confidence[v];
                 }
+            }
+            // A welded vertex is where the vertex it was welded to is.
+            for &(v, kept) in &mesh.welded {
+                map[v as usize] = map[kept as usize];
+                confidence[v as usize] = confidence[kept as usize];
             }
             Symmetry {
                 source: to_input(f.seed.0),

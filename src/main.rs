@@ -65,9 +65,16 @@ enum Command {
         /// Number of symmetry groups (default: automatic).
         #[arg(long)]
         groups: Option<usize>,
-        /// Accept edges shared by more than two triangles.
+        /// Refuse edges shared by more than two triangles (by default they are accepted and
+        /// counted).
         #[arg(long)]
+        reject_non_manifold: bool,
+        /// Accepted for compatibility: non-manifold edges are accepted by default now.
+        #[arg(long, hide = true)]
         allow_non_manifold: bool,
+        /// Do not weld coincident vertices.
+        #[arg(long)]
+        no_weld: bool,
         /// Refuse meshes with several connected components instead of using the largest.
         #[arg(long)]
         reject_disconnected: bool,
@@ -141,12 +148,15 @@ fn run(cli: Cli) -> Result<(), intrinsym::Error> {
             polish,
             proxy_vertices,
             groups,
-            allow_non_manifold,
+            reject_non_manifold,
+            allow_non_manifold: _,
+            no_weld,
             reject_disconnected,
         } => {
             let raw = read_mesh(&input)?;
             let mut mp = MeshParams::default();
-            mp.allow_non_manifold = allow_non_manifold;
+            mp.allow_non_manifold = !reject_non_manifold;
+            mp.weld = !no_weld;
             if reject_disconnected {
                 mp.components = ComponentPolicy::Reject;
             }
@@ -184,6 +194,12 @@ fn run(cli: Cli) -> Result<(), intrinsym::Error> {
                     info.components.saturating_sub(1),
                     info.degenerate_triangles,
                     info.non_manifold_edges
+                );
+            }
+            if info.welded_vertices > 0 {
+                println!(
+                    "  note: {} coincident vertices welded ({} triangles collapsed and dropped); they get the map of the vertex they were welded to",
+                    info.welded_vertices, info.collapsed_triangles
                 );
             }
             let t = &det.timings;

@@ -399,3 +399,28 @@ fn units_and_position_do_not_change_the_result() {
         }
     }
 }
+
+/// An STL-style triangle soup (every triangle with its own three vertices) is welded and
+/// gets the symmetries of the mesh it came from, on every input vertex (issue 16, item 3:
+/// it gave "0 symmetries" from one triangle).
+#[test]
+fn a_triangle_soup_is_welded_and_every_vertex_is_mapped() {
+    let c = shapes::quadruped(3, Pose::Rest, 0.0, 0);
+    let base = run(&c);
+    let vertices: Vec<[f64; 3]> = c.mesh.triangles.iter().flat_map(|t| t.map(|v| c.mesh.vertices[v as usize])).collect();
+    let triangles: Vec<[u32; 3]> = (0..c.mesh.num_triangles() as u32).map(|i| [3 * i, 3 * i + 1, 3 * i + 2]).collect();
+    let soup = Mesh::new(vertices.clone(), triangles, &MeshParams::default()).unwrap();
+    assert_eq!(soup.info.welded_vertices, vertices.len() - c.mesh.num_vertices());
+    let d = detect(&soup, &Params::default(), &mut |_| true).unwrap();
+    assert_eq!(d.mesh.welded_vertices, soup.info.welded_vertices);
+    assert_eq!(d.symmetries.len(), base.symmetries.len());
+    // The strongest map, read on the soup's vertices, is the mirror.
+    let position = |v: i64| vertices[v as usize];
+    let s = &d.symmetries[0];
+    assert!(s.map.iter().all(|&m| m >= 0), "every soup vertex has an image");
+    let mirrored = (0..vertices.len()).filter(|&v| {
+        let (p, q) = (vertices[v], position(s.map[v]));
+        (p[0] + q[0]).abs() < 1e-9 && (p[1] - q[1]).abs() < 1e-9 && (p[2] - q[2]).abs() < 1e-9
+    });
+    assert!(mirrored.count() as f64 > 0.95 * vertices.len() as f64);
+}

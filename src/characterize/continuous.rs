@@ -94,13 +94,16 @@ fn clusters(evals: &[f64], k: usize, gap: f64) -> (Vec<std::ops::Range<usize>>, 
 pub fn continuous_symmetry(basis: &Eigenbasis, params: &ContinuousParams) -> Continuous {
     let (groups, k) = clusters(&basis.evals, params.k, params.cluster_gap);
     // The unknowns: entries (a, b), a < b, inside one cluster.
-    let unknowns: Vec<(usize, usize)> = groups
-        .iter()
-        .flat_map(|g| {
-            g.clone()
-                .flat_map(move |a| (a + 1..g.end).map(move |b| (a, b)))
-        })
-        .collect();
+    // (Plain loops: valgrind reports a false "uninitialised value" in nested `flat_map`s of
+    // ranges, which would fail the C battery's valgrind run.)
+    let mut unknowns: Vec<(usize, usize)> = Vec::new();
+    for g in &groups {
+        for a in g.clone() {
+            for b in a + 1..g.end {
+                unknowns.push((a, b));
+            }
+        }
+    }
     let u = unknowns.len();
     if u == 0 || k < 2 {
         return Continuous::default();

@@ -89,6 +89,33 @@ pub struct sym_symmetry {
     pub fixed: f64,
 }
 
+/// What validating the mesh found and decided (added in 0.3). Set `struct_size =
+/// sizeof(sym_mesh_report)` before calling [`sym_get_mesh_report`].
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct sym_mesh_report {
+    /// Size of this struct as the caller knows it.
+    pub struct_size: usize,
+    /// Vertices in the input arrays.
+    pub input_vertices: usize,
+    /// Triangles in the input arrays.
+    pub input_triangles: usize,
+    /// Vertices used by no triangle (ignored: map −1, confidence 0).
+    pub isolated_vertices: usize,
+    /// Connected components of the input.
+    pub components: usize,
+    /// Vertices of the components that were not processed (only the largest is).
+    pub ignored_component_vertices: usize,
+    /// Edges shared by more than two triangles (accepted).
+    pub non_manifold_edges: usize,
+    /// Zero-area triangles (kept).
+    pub degenerate_triangles: usize,
+    /// Vertices welded to a coincident one (they get its map).
+    pub welded_vertices: usize,
+    /// Triangles that welding collapsed (dropped).
+    pub collapsed_triangles: usize,
+}
+
 /// Progress callback: `fraction` in [0, 1]; return 0 to cancel, nonzero to continue.
 pub type sym_progress_fn = Option<unsafe extern "C" fn(fraction: f32, user_data: *mut c_void) -> c_int>;
 
@@ -199,11 +226,11 @@ pub extern "C" fn sym_params_free(params: *mut sym_params) {
 }
 
 /// Applies a checked setting to a live params handle.
-fn set(params: *mut sym_params, name: &str, ok: bool, value: impl std::fmt::Display, apply: impl FnOnce(&mut sym_params)) -> sym_status {
+fn set(params: *mut sym_params, name: &str, range: &str, ok: bool, value: impl std::fmt::Display, apply: impl FnOnce(&mut sym_params)) -> sym_status {
     guard(|| {
         let p = params_mut(params)?;
         if !ok {
-            return Err(invalid(format!("{name}: value {value} is out of range")));
+            return Err(invalid(format!("{name}: value {value} is out of range ({range})")));
         }
         apply(p);
         Ok(())
@@ -213,43 +240,43 @@ fn set(params: *mut sym_params, name: &str, ok: bool, value: impl std::fmt::Disp
 /// Number of Laplace–Beltrami eigenpairs, 3 to 1000 (default 100). Returns `SYM_STATUS_INVALID_ARGUMENT` (settings unchanged) outside the range.
 #[no_mangle]
 pub extern "C" fn sym_params_set_eigenpairs(params: *mut sym_params, value: usize) -> sym_status {
-    set(params, "sym_params_set_eigenpairs", (3..=1000).contains(&value), value, |p| p.params.eigen.k = value)
+    set(params, "sym_params_set_eigenpairs", "3 to 1000", (3..=1000).contains(&value), value, |p| p.params.eigen.k = value)
 }
 
 /// Farthest-point samples, 8 to 1000 (default 64; the paper uses 20–100). Returns `SYM_STATUS_INVALID_ARGUMENT` (settings unchanged) outside the range.
 #[no_mangle]
 pub extern "C" fn sym_params_set_samples(params: *mut sym_params, value: usize) -> sym_status {
-    set(params, "sym_params_set_samples", (8..=1000).contains(&value), value, |p| p.params.samples = value)
+    set(params, "sym_params_set_samples", "8 to 1000", (8..=1000).contains(&value), value, |p| p.params.samples = value)
 }
 
 /// Random seed (default 0): results are deterministic for a seed. Returns `SYM_STATUS_INVALID_ARGUMENT` (settings unchanged) outside the range.
 #[no_mangle]
 pub extern "C" fn sym_params_set_seed(params: *mut sym_params, value: u64) -> sym_status {
-    set(params, "sym_params_set_seed", true, value, |p| p.params.seed = value)
+    set(params, "sym_params_set_seed", "any", true, value, |p| p.params.seed = value)
 }
 
 /// Good voters: WKS distance below this quantile of sample pairs, in (0, 1] (default 0.2). Returns `SYM_STATUS_INVALID_ARGUMENT` (settings unchanged) outside the range.
 #[no_mangle]
 pub extern "C" fn sym_params_set_wks_quantile(params: *mut sym_params, value: f64) -> sym_status {
-    set(params, "sym_params_set_wks_quantile", value > 0.0 && value <= 1.0, value, |p| p.params.voting.wks_quantile = value)
+    set(params, "sym_params_set_wks_quantile", "greater than 0, at most 1", value > 0.0 && value <= 1.0, value, |p| p.params.voting.wks_quantile = value)
 }
 
 /// Voting tolerance ε as a fraction of the biharmonic diameter, in (0, 0.5] (default 0.04). Returns `SYM_STATUS_INVALID_ARGUMENT` (settings unchanged) outside the range.
 #[no_mangle]
 pub extern "C" fn sym_params_set_voting_eps(params: *mut sym_params, value: f64) -> sym_status {
-    set(params, "sym_params_set_voting_eps", value > 0.0 && value <= 0.5, value, |p| p.params.voting.eps = value)
+    set(params, "sym_params_set_voting_eps", "greater than 0, at most 0.5", value > 0.0 && value <= 0.5, value, |p| p.params.voting.eps = value)
 }
 
 /// Region tolerance (mean distance mismatch / diameter), in (0, 0.5] (default 0.03). Returns `SYM_STATUS_INVALID_ARGUMENT` (settings unchanged) outside the range.
 #[no_mangle]
 pub extern "C" fn sym_params_set_accept(params: *mut sym_params, value: f64) -> sym_status {
-    set(params, "sym_params_set_accept", value > 0.0 && value <= 0.5, value, |p| p.params.maps.accept = value)
+    set(params, "sym_params_set_accept", "greater than 0, at most 0.5", value > 0.0 && value <= 0.5, value, |p| p.params.maps.accept = value)
 }
 
 /// Number of symmetry groups, 0 = automatic (default), at most 64. Returns `SYM_STATUS_INVALID_ARGUMENT` (settings unchanged) outside the range.
 #[no_mangle]
 pub extern "C" fn sym_params_set_groups(params: *mut sym_params, value: usize) -> sym_status {
-    set(params, "sym_params_set_groups", value <= 64, value, |p| p.params.groups = if value == 0 { None } else { Some(value) })
+    set(params, "sym_params_set_groups", "0 = automatic, or 1 to 64", value <= 64, value, |p| p.params.groups = if value == 0 { None } else { Some(value) })
 }
 
 /// Size of the proxy on which a large mesh's maps are made and then lifted to every vertex:
@@ -258,19 +285,28 @@ pub extern "C" fn sym_params_set_groups(params: *mut sym_params, value: usize) -
 /// 1000–10⁶. Returns `SYM_STATUS_INVALID_ARGUMENT` (settings unchanged) outside the range.
 #[no_mangle]
 pub extern "C" fn sym_params_set_proxy_vertices(params: *mut sym_params, value: usize) -> sym_status {
-    set(params, "sym_params_set_proxy_vertices", value == 0 || (1000..=1_000_000).contains(&value), value, |p| p.params.maps.proxy_vertices = value)
+    set(params, "sym_params_set_proxy_vertices", "0 = off, or 1000 to 1000000", value == 0 || (1000..=1_000_000).contains(&value), value, |p| p.params.maps.proxy_vertices = value)
 }
 
-/// Nonzero: accept edges shared by more than two triangles (default 0: refuse them). Returns `SYM_STATUS_INVALID_ARGUMENT` (settings unchanged) outside the range.
+/// Nonzero: accept edges shared by more than two triangles (default 1 since 0.3: accept them,
+/// with the Laplacian of the tufted cover); 0: refuse them with `SYM_STATUS_INVALID_MESH`.
 #[no_mangle]
 pub extern "C" fn sym_params_set_allow_non_manifold(params: *mut sym_params, value: c_int) -> sym_status {
-    set(params, "sym_params_set_allow_non_manifold", true, value, |p| p.mesh.allow_non_manifold = value != 0)
+    set(params, "sym_params_set_allow_non_manifold", "any", true, value, |p| p.mesh.allow_non_manifold = value != 0)
+}
+
+/// Nonzero: weld coincident vertices (default 1: vertices closer than 10⁻⁶ of the bounding-box
+/// diagonal are one, as in an STL-style triangle soup; a welded vertex gets the map of the
+/// vertex it joined); 0: keep them apart (added in 0.3).
+#[no_mangle]
+pub extern "C" fn sym_params_set_weld(params: *mut sym_params, value: c_int) -> sym_status {
+    set(params, "sym_params_set_weld", "any", true, value, |p| p.mesh.weld = value != 0)
 }
 
 /// Nonzero: refuse meshes with several connected components (default 0: use the largest). Returns `SYM_STATUS_INVALID_ARGUMENT` (settings unchanged) outside the range.
 #[no_mangle]
 pub extern "C" fn sym_params_set_reject_disconnected(params: *mut sym_params, value: c_int) -> sym_status {
-    set(params, "sym_params_set_reject_disconnected", true, value, |p| p.mesh.components = if value != 0 { ComponentPolicy::Reject } else { ComponentPolicy::Largest })
+    set(params, "sym_params_set_reject_disconnected", "any", true, value, |p| p.mesh.components = if value != 0 { ComponentPolicy::Reject } else { ComponentPolicy::Largest })
 }
 
 /// Detects the intrinsic symmetries of a triangle mesh.
@@ -414,6 +450,77 @@ pub unsafe extern "C" fn sym_get_map(result: *const sym_result, index: usize, ou
 #[no_mangle]
 pub extern "C" fn sym_continuous_dimension(result: *const sym_result) -> i32 {
     guard_value(-1, || result_ref(result).map_or(-1, |r| r.det.continuous.dimension as i32))
+}
+
+/// Fills `*out` with what validating the mesh found and decided (welded vertices,
+/// non-manifold edges, ignored components and isolated vertices), so that a host can tell its
+/// user (added in 0.3). `out->struct_size` must be set.
+///
+/// # Safety
+/// `out` must point to a writable `sym_mesh_report` whose `struct_size` is initialised.
+#[no_mangle]
+pub unsafe extern "C" fn sym_get_mesh_report(result: *const sym_result, out: *mut sym_mesh_report) -> sym_status {
+    guard(|| {
+        let r = result_ref(result)?;
+        if out.is_null() {
+            return Err(null("out"));
+        }
+        // SAFETY: `out` is non-NULL; struct_size is the first field and initialised by contract.
+        let caller_size = unsafe { std::ptr::addr_of!((*out).struct_size).read() };
+        let min = std::mem::offset_of!(sym_mesh_report, collapsed_triangles) + std::mem::size_of::<usize>();
+        if caller_size < min {
+            return Err(invalid(format!("out->struct_size is {caller_size}, at least {min} (sizeof(sym_mesh_report)) expected")));
+        }
+        let i = &r.det.mesh;
+        let value = sym_mesh_report {
+            struct_size: std::mem::size_of::<sym_mesh_report>().min(caller_size),
+            input_vertices: i.input_vertices,
+            input_triangles: i.input_triangles,
+            isolated_vertices: i.isolated_vertices,
+            components: i.components,
+            ignored_component_vertices: i.ignored_component_vertices,
+            non_manifold_edges: i.non_manifold_edges,
+            degenerate_triangles: i.degenerate_triangles,
+            welded_vertices: i.welded_vertices,
+            collapsed_triangles: i.collapsed_triangles,
+        };
+        let n = std::mem::size_of::<sym_mesh_report>().min(caller_size);
+        // SAFETY: `out` has at least `caller_size` writable bytes (caller contract), n ≤ that.
+        unsafe { std::ptr::copy_nonoverlapping((&value as *const sym_mesh_report).cast::<u8>(), out.cast::<u8>(), n) };
+        Ok(())
+    })
+}
+
+/// Writes `3 * num_vertices` bytes of `rgb`: the colours the command-line tool and the MeshLab
+/// filter paint a map with, a vertex and its image alike (a symmetric function of their
+/// positions; vertices with `map[v] < 0` or out of range are grey 150). `xyz` holds
+/// `3 * num_vertices` coordinates and `map` `num_vertices` images (added in 0.3).
+///
+/// # Safety
+/// `xyz`, `map` and `rgb` must point to arrays of the stated lengths.
+#[no_mangle]
+pub unsafe extern "C" fn sym_correspondence_colours(xyz: *const f64, num_vertices: usize, map: *const i64, rgb: *mut u8) -> sym_status {
+    guard(|| {
+        if xyz.is_null() {
+            return Err(null("xyz"));
+        }
+        if map.is_null() {
+            return Err(null("map"));
+        }
+        if rgb.is_null() {
+            return Err(null("rgb"));
+        }
+        if num_vertices > (isize::MAX as usize) / 32 {
+            return Err(invalid(format!("absurd vertex count {num_vertices}")));
+        }
+        // SAFETY: non-NULL, bounded lengths; the caller guarantees the extents.
+        let (xyz, map, rgb) = unsafe { (std::slice::from_raw_parts(xyz, 3 * num_vertices), std::slice::from_raw_parts(map, num_vertices), std::slice::from_raw_parts_mut(rgb, 3 * num_vertices)) };
+        let vertices: Vec<[f64; 3]> = xyz.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
+        for (out, c) in rgb.chunks_exact_mut(3).zip(crate::output::ply::correspondence_colours(&vertices, map)) {
+            out.copy_from_slice(&c);
+        }
+        Ok(())
+    })
 }
 
 /// Per-vertex symmetry summary (the largest confidence over all symmetries), `sym_vertex_count`

@@ -12,7 +12,8 @@
 //! | NaN or ±inf coordinate | error [`MeshError::NonFinite`] |
 //! | index ≥ number of vertices | error [`MeshError::IndexOutOfRange`] |
 //! | the same vertex twice in one triangle | error [`MeshError::RepeatedIndex`] |
-//! | an edge shared by more than two triangles | error [`MeshError::NonManifoldEdge`], unless [`MeshParams::allow_non_manifold`] (then counted) |
+//! | an edge shared by more than two triangles | **accepted** and counted in [`MeshInfo::non_manifold_edges`] (the Laplacian is that of the tufted cover, below); error [`MeshError::NonManifoldEdge`] when [`MeshParams::allow_non_manifold`] is off |
+//! | coincident vertices (an STL-style triangle soup, a seam split by duplicated vertices) | **welded** ([`MeshParams::weld`], tolerance [`WELD_REL`] of the bounding-box diagonal), counted in [`MeshInfo::welded_vertices`]; results give a welded vertex the map of the vertex it joined |
 //! | zero-area (collinear or collapsed) triangles | **kept** and counted in [`MeshInfo::degenerate_triangles`]: the Laplacian is built on intrinsically mollified edge lengths (Sharp & Crane 2020), so they get a tiny positive area and finite cotangents; dropping them would punch holes |
 //! | every triangle degenerate (zero total area) | error [`MeshError::Degenerate`] |
 //! | vertices used by no triangle | **ignored** (not part of the computation; results mark them "no image", confidence 0), counted in [`MeshInfo::isolated_vertices`] |
@@ -39,17 +40,39 @@ pub enum ComponentPolicy {
 }
 
 /// Parameters of mesh validation.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug)]
 #[non_exhaustive]
 pub struct MeshParams {
     /// Several connected components: process the largest (default) or reject.
     pub components: ComponentPolicy,
-    /// Accept edges shared by more than two triangles (default: reject). The cotangent
-    /// Laplacian stays well defined (each triangle adds a positive semi-definite element
-    /// matrix), so scans with self-contacts glued into non-manifold edges, like SHREC'16's
-    /// kids, can be processed; the count is reported in [`MeshInfo::non_manifold_edges`].
+    /// Accept edges shared by more than two triangles (default: accept; issue 16, item 2). The
+    /// Laplacian is assembled triangle by triangle from intrinsic edge lengths, each triangle
+    /// adding its own positive semi-definite cotangent element matrix: that is the cotangent
+    /// Laplacian of the *tufted cover* of Sharp & Crane 2020 ("A Laplacian for nonmanifold
+    /// triangle meshes"), where every triangle keeps its own copy of a non-manifold edge (we do
+    /// not perform their intrinsic Delaunay flips, which would also make every weight
+    /// positive). Scans with self-contacts glued into non-manifold edges, like SHREC'16's kids,
+    /// are processed (a kid00 that MeshLab had to repair first now runs as it is); the count
+    /// is reported in [`MeshInfo::non_manifold_edges`].
     pub allow_non_manifold: bool,
+    /// Weld coincident vertices (default: yes): vertices closer than [`WELD_REL`] times the
+    /// bounding-box diagonal are one vertex, as in a mesh exported from STL (every triangle
+    /// with its own three vertices) or split along a seam. Counted in
+    /// [`MeshInfo::welded_vertices`]; results give a welded vertex the map of the vertex it
+    /// was welded to.
+    pub weld: bool,
 }
+
+impl Default for MeshParams {
+    fn default() -> Self {
+        MeshParams { components: ComponentPolicy::default(), allow_non_manifold: true, weld: true }
+    }
+}
+
+/// Welding tolerance relative to the bounding-box diagonal: far below any mesh's edge length
+/// (a 10⁶-vertex scan's edges are about 10⁻³ of its diagonal), far above float32 rounding of
+/// a written coordinate (about 10⁻⁷ of the coordinates' magnitude is the largest error).
+pub const WELD_REL: f64 = 1e-6;
 
 /// Facts found while validating a mesh (warnings, not errors).
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
@@ -67,8 +90,12 @@ pub struct MeshInfo {
     pub components: usize,
     /// Vertices of the components that were not processed (ignored).
     pub ignored_component_vertices: usize,
-    /// Edges shared by more than two triangles (accepted only with `allow_non_manifold`).
+    /// Edges shared by more than two triangles (accepted unless `allow_non_manifold` is off).
     pub non_manifold_edges: usize,
+    /// Vertices welded to a coincident one ([`MeshParams::weld`]).
+    pub welded_vertices: usize,
+    /// Triangles that welding collapsed (two corners became one vertex): dropped.
+    pub collapsed_triangles: usize,
 }
 
 /// Why a mesh was refused.
@@ -184,6 +211,9 @@ pub struct Mesh {
     pub triangles: Vec<[u32; 3]>,
     /// `(n,)` input index of each processed vertex.
     pub input_index: Vec<u32>,
+    /// Input vertices welded to another, as `(vertex, the input vertex it was welded to)`
+    /// ([`MeshParams::weld`]).
+    pub welded: Vec<(u32, u32)>,
     /// What validation found.
     pub info: MeshInfo,
 }
@@ -228,6 +258,11 @@ impl Mesh {
                 return Err(MeshError::RepeatedIndex { triangle: ti });
             }
         }
+        let (triangles, welded, collapsed_triangles) = if params.weld { weld(&vertices, triangles) } else { (triangles, Vec::new(), 0) };
+        if triangles.is_empty() {
+            return Err(outlier(&vertices).unwrap_or(MeshError::Degenerate));
+        }
+        let (input_triangles, m) = (m, triangles.len());
         let non_manifold_edges = match check_edge_manifold(&triangles) {
             Ok(()) => 0,
             Err(e) if !params.allow_non_manifold => return Err(e),
@@ -265,7 +300,7 @@ impl Mesh {
                 used[i as usize] = true;
             }
         }
-        let isolated = used.iter().filter(|&&u| !u).count();
+        let isolated = used.iter().filter(|&&u| !u).count() - welded.len();
         let mut comp_area = std::collections::HashMap::new();
         for (t, a) in triangles.iter().zip(&areas) {
             *comp_area.entry(uf.find(t[0] as usize)).or_insert(0.0) += a;
@@ -302,19 +337,24 @@ impl Mesh {
                 }
             }
         }
-        let ignored_component_vertices = n - isolated - input_index.len();
+        // A vertex welded into an ignored component is ignored with it.
+        let welded: Vec<(u32, u32)> = welded.into_iter().filter(|&(_, r)| new_index[r as usize] != u32::MAX).collect();
+        let ignored_component_vertices = n - isolated - input_index.len() - welded.len();
         Ok(Mesh {
             vertices: kept_vertices,
             triangles: kept_triangles,
             input_index,
+            welded: welded.clone(),
             info: MeshInfo {
                 input_vertices: n,
-                input_triangles: m,
+                input_triangles: input_triangles,
                 degenerate_triangles: kept_degenerate,
                 isolated_vertices: isolated,
                 components,
                 ignored_component_vertices,
                 non_manifold_edges,
+                welded_vertices: welded.len(),
+                collapsed_triangles,
             },
         })
     }
@@ -355,7 +395,7 @@ impl Mesh {
         for p in &mut q {
             *p = p.map(|x| x / s);
         }
-        let mesh = Mesh { vertices: q, triangles: self.triangles.clone(), input_index: self.input_index.clone(), info: self.info.clone() };
+        let mesh = Mesh { vertices: q, triangles: self.triangles.clone(), input_index: self.input_index.clone(), welded: self.welded.clone(), info: self.info.clone() };
         (mesh, unit * s)
     }
 
@@ -468,6 +508,65 @@ impl Mesh {
         }
         ((hi[0] - lo[0]).powi(2) + (hi[1] - lo[1]).powi(2) + (hi[2] - lo[2]).powi(2)).sqrt()
     }
+}
+
+/// Welds vertices closer than [`WELD_REL`] times the bounding-box diagonal (a hash grid of
+/// that cell size; each vertex joins the first earlier one within reach). Returns the
+/// triangles on the kept vertices without those that collapsed, the `(welded, kept)` pairs
+/// and the number of collapsed triangles.
+fn weld(vertices: &[[f64; 3]], triangles: Vec<[u32; 3]>) -> (Vec<[u32; 3]>, Vec<(u32, u32)>, usize) {
+    let unit = vertices.iter().flat_map(|p| p.iter()).fold(0.0f64, |m, x| m.max(x.abs()));
+    if unit == 0.0 {
+        return (triangles, Vec::new(), 0);
+    }
+    let q: Vec<[f64; 3]> = vertices.iter().map(|p| p.map(|x| x / unit)).collect();
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for p in &q {
+        for d in 0..3 {
+            lo[d] = lo[d].min(p[d]);
+            hi[d] = hi[d].max(p[d]);
+        }
+    }
+    let diagonal = norm_sq(sub(hi, lo)).sqrt();
+    let tol = WELD_REL * diagonal;
+    if tol <= 0.0 {
+        return (triangles, Vec::new(), 0);
+    }
+    let cell = |p: &[f64; 3]| [0, 1, 2].map(|d| ((p[d] - lo[d]) / tol).floor() as i64);
+    let mut grid: std::collections::HashMap<[i64; 3], Vec<u32>> = std::collections::HashMap::new();
+    let mut keep: Vec<u32> = (0..vertices.len() as u32).collect();
+    let mut welded = Vec::new();
+    for (i, p) in q.iter().enumerate() {
+        let c = cell(p);
+        let mut found = None;
+        'search: for dx in -1..=1 {
+            for dy in -1..=1 {
+                for dz in -1..=1 {
+                    if let Some(list) = grid.get(&[c[0] + dx, c[1] + dy, c[2] + dz]) {
+                        if let Some(&j) = list.iter().find(|&&j| norm_sq(sub(q[j as usize], *p)) <= tol * tol) {
+                            found = Some(j);
+                            break 'search;
+                        }
+                    }
+                }
+            }
+        }
+        match found {
+            Some(j) => {
+                keep[i] = j;
+                welded.push((i as u32, j));
+            }
+            None => grid.entry(c).or_default().push(i as u32),
+        }
+    }
+    if welded.is_empty() {
+        return (triangles, welded, 0);
+    }
+    let before = triangles.len();
+    let triangles: Vec<[u32; 3]> = triangles.into_iter().map(|t| t.map(|v| keep[v as usize])).filter(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2]).collect();
+    let collapsed = before - triangles.len();
+    (triangles, welded, collapsed)
 }
 
 /// The stray vertex of a mesh whose largest coordinate is more than 10¹² times the median
@@ -680,13 +779,14 @@ mod tests {
         let (mut v, mut t) = tet();
         v.push([1., 1., 1.]);
         t.push([0, 1, 4]); // third triangle on edge (0,1)
-        assert_eq!(err(v.clone(), t.clone()), MeshError::NonManifoldEdge { a: 0, b: 1, triangles: 3 });
-        let allow = MeshParams { allow_non_manifold: true, ..Default::default() };
-        assert_eq!(Mesh::new(v, t, &allow).unwrap().info.non_manifold_edges, 1);
+        let strict = MeshParams { allow_non_manifold: false, ..Default::default() };
+        assert_eq!(Mesh::new(v.clone(), t.clone(), &strict).unwrap_err(), MeshError::NonManifoldEdge { a: 0, b: 1, triangles: 3 });
+        // Accepted by default, and counted.
+        assert_eq!(Mesh::new(v, t, &MeshParams::default()).unwrap().info.non_manifold_edges, 1);
         // The same triangle twice is non-manifold too.
         let (v, mut t) = tet();
         t.push(t[0]);
-        assert!(matches!(err(v, t), MeshError::NonManifoldEdge { triangles: 3, .. }));
+        assert!(matches!(Mesh::new(v, t, &strict).unwrap_err(), MeshError::NonManifoldEdge { triangles: 3, .. }));
     }
 
     #[test]
@@ -704,11 +804,17 @@ mod tests {
         let t = vec![[0, 2, 4], [0, 4, 1], [0, 1, 3], [1, 4, 3], [4, 2, 3], [0, 3, 2]];
         let m = Mesh::new(v.clone(), t.clone(), &MeshParams::default()).unwrap();
         assert_eq!(m.info.degenerate_triangles, 0);
-        // Collapse vertex 4 onto vertex 1: faces [0,4,1] and [1,4,3] get zero area but stay.
+        // Collapse vertex 4 onto vertex 1: faces [0,4,1] and [1,4,3] get zero area but stay
+        // (without welding)…
         v[4] = v[1];
-        let m = Mesh::new(v, t, &MeshParams::default()).unwrap();
+        let unwelded = MeshParams { weld: false, ..Default::default() };
+        let m = Mesh::new(v.clone(), t.clone(), &unwelded).unwrap();
         assert_eq!(m.info.degenerate_triangles, 2);
         assert_eq!(m.num_triangles(), 6);
+        // …and by default vertex 4 is welded to vertex 1, which collapses those two faces.
+        let m = Mesh::new(v, t, &MeshParams::default()).unwrap();
+        assert_eq!((m.info.welded_vertices, m.info.collapsed_triangles, m.num_triangles()), (1, 2, 4));
+        assert_eq!(m.welded, vec![(4, 1)]);
     }
 
     #[test]

@@ -2,8 +2,11 @@
 //! float `quality` property, which MeshLab reads as vertex quality.
 //!
 //! Colouring ([`correspondence_colours`]): a vertex and its image under the chosen symmetry get
-//! the same colour — the colour of the midpoint of `p(v)` and `p(T v)` mapped into the bounding
-//! box — so mirrored parts are painted alike; vertices outside the region are grey.
+//! the same colour — a symmetric function of `p(v)` and `p(T v)`: per channel, their mean and
+//! the mean of their squares, in bounding-box coordinates mapped to [−1, 1] — so mirrored
+//! parts are painted alike; vertices outside the region are grey. The squares matter where the
+//! mean says nothing: a sphere's antipodal map sends every midpoint to the centre, and the
+//! midpoint alone painted the whole sphere one colour (issue 16, item 21).
 
 use std::path::Path;
 
@@ -25,17 +28,18 @@ pub fn correspondence_colours(vertices: &[[f64; 3]], map: &[i64]) -> Vec<[u8; 3]
             hi[d] = hi[d].max(p[d]);
         }
     }
+    // Bounding-box coordinates in [−1, 1].
+    let unit = |p: &[f64; 3], d: usize| if hi[d] > lo[d] { (2.0 * p[d] - lo[d] - hi[d]) / (hi[d] - lo[d]) } else { 0.0 };
     vertices
         .iter()
         .zip(map)
         .map(|(p, &t)| {
-            if t < 0 {
+            let Some(q) = usize::try_from(t).ok().and_then(|t| vertices.get(t)) else {
                 return OUTSIDE;
-            }
-            let q = vertices[t as usize];
+            };
             std::array::from_fn(|d| {
-                let mid = 0.5 * (p[d] + q[d]);
-                let x = if hi[d] > lo[d] { (mid - lo[d]) / (hi[d] - lo[d]) } else { 0.5 };
+                let (u, v) = (unit(p, d), unit(q, d));
+                let x = 0.5 + 0.15 * (u + v) + 0.45 * (0.5 * (u * u + v * v) - 0.33);
                 (40.0 + 200.0 * x.clamp(0.0, 1.0)) as u8
             })
         })
@@ -100,6 +104,23 @@ pub fn write_ply(path: impl AsRef<Path>, mesh: &RawMesh, colours: &[[u8; 3]], qu
 mod tests {
     use super::*;
     use crate::mesh::read_mesh;
+
+    #[test]
+    /// A sphere's antipodal map paints the sphere in many colours, not one (issue 16, item 21),
+    /// and a vertex and its image share theirs.
+    #[test]
+    fn the_antipodal_map_of_a_sphere_is_not_one_colour() {
+        let sphere = crate::shapes::icosphere(3);
+        let key = |p: [f64; 3]| p.map(|x| (x * 1e6).round() as i64);
+        let index: std::collections::HashMap<[i64; 3], i64> = sphere.vertices.iter().enumerate().map(|(i, &p)| (key(p), i as i64)).collect();
+        let antipodal: Vec<i64> = sphere.vertices.iter().map(|p| index[&key(p.map(|x| -x))]).collect();
+        let colours = correspondence_colours(&sphere.vertices, &antipodal);
+        let distinct: std::collections::HashSet<[u8; 3]> = colours.iter().copied().collect();
+        assert!(distinct.len() >= 50, "{} colours", distinct.len());
+        assert!(antipodal.iter().enumerate().all(|(v, &t)| colours[v] == colours[t as usize]));
+        // A map index outside the mesh is "outside", not a crash.
+        assert_eq!(correspondence_colours(&sphere.vertices[..2], &[5, -1]), vec![OUTSIDE, OUTSIDE]);
+    }
 
     #[test]
     fn ply_round_trips_and_mirror_vertices_share_colours() {

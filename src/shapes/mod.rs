@@ -160,7 +160,9 @@ pub fn needle_sphere(level: u32) -> Mesh {
             v[i] = [q[0] + 1e-9, q[1] - 1e-9, q[2]];
         }
     }
-    build(v, t)
+    // Not welded: the coincident vertices are the point (zero-area triangles kept).
+    let unwelded = MeshParams { weld: false, ..Default::default() };
+    Mesh::new(v, t, &unwelded).expect("generated meshes are valid")
 }
 
 /// For each vertex, the vertex at its mirror position across the plane `x_axis = 0`

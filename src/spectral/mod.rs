@@ -108,8 +108,10 @@ impl Eigenbasis {
         let laplacian = cotan::cotan_laplacian(&unit, &lengths);
         let unit_mass = mass::lumped_mass(&unit, &lengths);
         let assembly_seconds = t.elapsed().as_secs_f64();
-        let (mut evals, mut evecs, info) = eigen::eigen(&laplacian, &unit_mass, params, progress)?;
+        let (mut evals, mut evecs, mut info) = eigen::eigen(&laplacian, &unit_mass, params, progress)?;
         if s != 1.0 {
+            // ‖Lφ − λMφ‖/‖Mφ‖ has the units of λ.
+            info.max_residual /= s * s;
             evals.iter_mut().for_each(|l| *l /= s * s);
             evecs.col_iter_mut().for_each(|c| c.iter_mut().for_each(|x| *x /= s));
         }

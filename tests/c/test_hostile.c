@@ -124,13 +124,46 @@ int main(int argc, char **argv) {
     bad_t[4] = bad_t[3];
     expect("repeated index in a triangle", detect(tet_v, 4, bad_t, 4, NULL), SYM_STATUS_INVALID_MESH, 1);
     {
+        /* Non-manifold edges are accepted by default (issue 16, item 2) and refused on request. */
         const uint32_t twice[15] = {0, 2, 1, 0, 1, 3, 1, 2, 3, 0, 3, 2, 0, 2, 1};
-        expect("duplicate triangle (non-manifold)", detect(tet_v, 4, twice, 5, NULL), SYM_STATUS_INVALID_MESH, 1);
-    }
-    {
         const double fan_v[15] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, -1, 0};
         const uint32_t fan_t[9] = {0, 1, 2, 0, 1, 3, 0, 1, 4};
-        expect("edge shared by 3 triangles", detect(fan_v, 5, fan_t, 3, NULL), SYM_STATUS_INVALID_MESH, 1);
+        sym_params *strict = sym_params_new();
+        CHECK(sym_params_set_allow_non_manifold(strict, 0) == SYM_STATUS_OK, "strict");
+        expect("duplicate triangle (non-manifold), refused", detect(tet_v, 4, twice, 5, strict), SYM_STATUS_INVALID_MESH, 1);
+        expect("edge shared by 3 triangles, refused", detect(fan_v, 5, fan_t, 3, strict), SYM_STATUS_INVALID_MESH, 1);
+        expect("duplicate triangle (non-manifold), accepted", detect(tet_v, 4, twice, 5, NULL), SYM_STATUS_OK, 0);
+        expect("edge shared by 3 triangles, accepted", detect(fan_v, 5, fan_t, 3, NULL), SYM_STATUS_OK, 0);
+        sym_params_free(strict);
+    }
+    {
+        /* A triangle soup (every triangle its own vertices, as from STL) is welded (item 3):
+         * the report says how many, and every input vertex gets an image. */
+        double soup_v[36];
+        uint32_t soup_t[12];
+        sym_mesh_report info;
+        sym_result *welded = NULL;
+        int i, d;
+        for (i = 0; i < 12; i++) {
+            for (d = 0; d < 3; d++) soup_v[3 * i + d] = tet_v[3 * tet_t[i] + d];
+            soup_t[i] = (uint32_t)i;
+        }
+        CHECK(sym_detect(soup_v, 12, soup_t, 4, NULL, NULL, NULL, &welded) == SYM_STATUS_OK, "soup detect");
+        memset(&info, 0, sizeof info);
+        info.struct_size = sizeof info;
+        CHECK(sym_get_mesh_report(welded, &info) == SYM_STATUS_OK, "mesh report");
+        CHECK(info.input_vertices == 12 && info.welded_vertices == 8 && info.isolated_vertices == 0 && info.components == 1, "welded %zu of %zu", info.welded_vertices, info.input_vertices);
+        if (sym_count(welded) > 0) {
+            sym_symmetry w;
+            memset(&w, 0, sizeof w);
+            w.struct_size = sizeof w;
+            CHECK(sym_get_map(welded, 0, &w) == SYM_STATUS_OK, "soup map");
+            for (i = 0; i < 12; i++) CHECK(w.map[i] >= 0 && w.map[i] < 12, "soup vertex %d has no image", i);
+        }
+        info.struct_size = 8;
+        expect("mesh report struct_size too small", sym_get_mesh_report(welded, &info), SYM_STATUS_INVALID_ARGUMENT, 1);
+        expect("mesh report NULL out", sym_get_mesh_report(welded, NULL), SYM_STATUS_NULL_PARAMETER, 1);
+        sym_free(welded);
     }
 
     /* Degenerate and tiny meshes. */

@@ -4,6 +4,8 @@ mirror image carry the same colour (Correspondence colouring).
     check_ply.py OUT.ply              mirror pairs found by position (x -> -x): colours equal
     check_ply.py OUT.ply TRUTH.txt    posed mesh, true pairs `x sym_x` by index: colours within
                                       12 levels (a map within ~5% of the bounding box)
+    check_ply.py OUT.ply --varied     the colours vary over the surface (a sphere's antipodal
+                                      map once painted every vertex alike)
 """
 import struct
 import sys
@@ -51,6 +53,12 @@ def check_truth(rows, truth_path):
 
 def main():
     rows = read_vertices(sys.argv[1])
+    if sys.argv[2:] == ["--varied"]:
+        colours = {(r["red"], r["green"], r["blue"]) for r in rows}
+        spread = max(max(r[c] for r in rows) - min(r[c] for r in rows) for c in ("red", "green", "blue"))
+        print("%d vertices, %d distinct colours, largest channel spread %d" % (len(rows), len(colours), spread))
+        assert len(colours) >= 50 and spread >= 40, "the colouring says nothing about the map"
+        return
     if len(sys.argv) > 2:
         assert all(0.0 <= r["quality"] <= 1.0 for r in rows), "quality outside [0, 1]"
         check_truth(rows, sys.argv[2])
