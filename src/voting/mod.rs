@@ -96,6 +96,14 @@ pub fn wks_distance(a: &[f64], b: &[f64]) -> f64 {
     (s / a.len().max(1) as f64).sqrt()
 }
 
+/// At most this many good pairs vote (those with the closest signatures): 12,000 pairs cost two
+/// relations of 18 MB each and about a second; the defaults (64 samples, quantile 0.2) give
+/// about 800.
+pub const MAX_GOOD_PAIRS: usize = 12_000;
+
+/// At most this many seeds grow candidates (twice the default 64 samples).
+pub const MAX_SEEDS: usize = 128;
+
 /// Runs correspondence space voting on the samples; `wks` is `(n, E)`.
 pub fn vote(
     emb: &BiharmonicEmbedding,
@@ -130,6 +138,17 @@ pub fn vote(
                 pairs.push((i, j));
             }
         }
+    }
+    // A budget on good pairs: the relations below are quadratic in their number, in bits and
+    // in time (issue 16, item 13: 1000 samples at quantile 0.2, or a 162-vertex sphere at
+    // quantile 1, ran for minutes and tens of gigabytes). Past it the pairs with the closest
+    // signatures are kept, as a lower quantile would.
+    if pairs.len() > MAX_GOOD_PAIRS {
+        let mut by_signature = pairs.clone();
+        by_signature.sort_by(|a, b| wd[(a.0, a.1)].total_cmp(&wd[(b.0, b.1)]).then(a.cmp(b)));
+        by_signature.truncate(MAX_GOOD_PAIRS);
+        by_signature.sort();
+        pairs = by_signature;
     }
     let good_pairs = pairs.len();
     let consistent = |p: (usize, usize), q: (usize, usize)| (dist[(p.0, q.0)] - dist[(p.1, q.1)]).abs() < eps;
@@ -168,7 +187,9 @@ pub fn vote(
         by_target[y].push(r as u32);
     }
     // Each seed grows independently: seeds are grown on all cores, collected in seed order.
-    let max_seeds = 2 * ns;
+    // At most 2 per sample, and at most MAX_SEEDS (the default's 2 × 64): each seed's growth
+    // scans every good pair, so more samples must not mean quadratically more growth.
+    let max_seeds = (2 * ns).min(MAX_SEEDS);
     let seeds: Vec<usize> = order.iter().copied().take(max_seeds).take_while(|&pi| votes[pi] > 0).collect();
     let grow_seed = |&pi: &usize| -> Vec<Candidate> {
         let mut grown = Vec::new();
@@ -327,6 +348,24 @@ fn merge(mut grown: Vec<Candidate>, dist: Option<&Mat<f64>>, eps: f64) -> Vec<Ca
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Settings at the ends of their ranges (every sample pair a good voter) vote with at
+    /// most MAX_GOOD_PAIRS pairs, those with the closest signatures (issue 16, item 13: such
+    /// settings ran for minutes), and still find the sphere's symmetries.
+    #[test]
+    fn the_good_pairs_are_capped_at_the_ends_of_the_ranges() {
+        let mesh = crate::shapes::icosphere(2);
+        let basis = crate::spectral::Eigenbasis::compute(&mesh, &crate::spectral::EigenParams { k: 40, ..Default::default() }).unwrap();
+        let emb = crate::distance::biharmonic(&basis);
+        let wks = crate::descriptors::wks(&basis, &Default::default());
+        let samples = crate::sampling::farthest_point(&emb, mesh.num_vertices(), 0);
+        let params = VotingParams { wks_quantile: 1.0, eps: 0.5, ..Default::default() };
+        let (candidates, info, _) = vote(&emb, &wks, &samples, &params);
+        let n = mesh.num_vertices();
+        assert!(n * (n - 1) > MAX_GOOD_PAIRS, "the case must exceed the budget");
+        assert_eq!(info.good_pairs, MAX_GOOD_PAIRS);
+        assert!(!candidates.is_empty());
+    }
 
     #[test]
     fn wks_distance_is_relative_and_bounded() {
