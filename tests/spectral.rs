@@ -135,6 +135,18 @@ fn progress_is_reported_and_can_cancel() {
     .unwrap();
     assert_eq!(basis.evals.len(), 30);
     assert!(!seen.is_empty() && seen.iter().all(|f| (0.0..=1.0).contains(f)));
+    // It moves steadily (issue 16, item 20: with 100 pairs it sat at 0.01 through the first
+    // Lanczos basis, most of the work): never backwards, and past a quarter by the middle call
+    // (it was 0.01 there).
+    let mesh = shapes::bumpy_torus(60);
+    let mut seen = Vec::new();
+    Eigenbasis::compute_with_progress(&mesh, &params(100, Solver::Lanczos), &mut |f| {
+        seen.push(f);
+        true
+    })
+    .unwrap();
+    assert!(seen.windows(2).all(|w| w[1] >= w[0]), "{seen:?}");
+    assert!(seen[seen.len() / 2] > 0.25, "{seen:?}");
     let mut calls = 0;
     let e = Eigenbasis::compute_with_progress(&mesh, &params(30, Solver::Lanczos), &mut |_| {
         calls += 1;
