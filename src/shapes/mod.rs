@@ -63,15 +63,7 @@ pub fn torus_of_revolution(nu: usize, nv: usize, minor: f64) -> Mesh {
             v.push([r * th.cos(), r * th.sin(), minor * ph.sin()]);
         }
     }
-    let at = |i: usize, j: usize| ((i % nu) * nv + j % nv) as u32;
-    let mut t = Vec::with_capacity(2 * nu * nv);
-    for i in 0..nu {
-        for j in 0..nv {
-            t.push([at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
-            t.push([at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
-        }
-    }
-    build(v, t)
+    build(v, torus_grid(nu, nv))
 }
 
 fn normalize(p: [f64; 3]) -> [f64; 3] {
@@ -131,6 +123,12 @@ pub fn bumpy_torus(s: usize) -> Mesh {
             v.push([(big + r * w.cos()) * u.cos(), (big + r * w.cos()) * u.sin() * 1.1, r * w.sin()]);
         }
     }
+    build(v, torus_grid(nu, nv))
+}
+
+/// The triangles of an `nu × nv` grid closed in both directions (vertex `(i, j)` at
+/// `i·nv + j`), two per cell.
+fn torus_grid(nu: usize, nv: usize) -> Vec<[u32; 3]> {
     let id = |i: usize, j: usize| ((i % nu) * nv + (j % nv)) as u32;
     let mut t = Vec::with_capacity(2 * nu * nv);
     for i in 0..nu {
@@ -139,7 +137,7 @@ pub fn bumpy_torus(s: usize) -> Mesh {
             t.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
         }
     }
-    build(v, t)
+    t
 }
 
 /// An icosphere with bad triangles: every 7th vertex is moved onto a neighbour (its two shared
