@@ -105,8 +105,9 @@ fn to_index(x: i64, line: usize) -> Result<u32, LineError> {
 /// comment is common; in a number they still fail, with the line named).
 fn text_lines(mut reader: impl BufRead) -> impl Iterator<Item = Result<(usize, String), LineError>> {
     let mut number = 0;
+    let mut bytes = Vec::new();
     std::iter::from_fn(move || {
-        let mut bytes = Vec::new();
+        bytes.clear();
         match reader.read_until(b'\n', &mut bytes) {
             Ok(0) => None,
             Err(e) => Some(Err((Some(number + 1), e.to_string()))),

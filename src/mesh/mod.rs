@@ -534,7 +534,9 @@ fn weld(vertices: &[[f64; 3]], triangles: Vec<[u32; 3]>) -> (Vec<[u32; 3]>, Vec<
         return (triangles, Vec::new(), 0);
     }
     let cell = |p: &[f64; 3]| [0, 1, 2].map(|d| ((p[d] - lo[d]) / tol).floor() as i64);
-    let mut grid: std::collections::HashMap<[i64; 3], Vec<u32>> = std::collections::HashMap::new();
+    // Each cell holds a chain of vertices: the first in `head`, the rest through `next`.
+    let mut head: std::collections::HashMap<[i64; 3], u32, CellHash> = std::collections::HashMap::with_capacity_and_hasher(q.len(), CellHash);
+    let mut next: Vec<u32> = vec![u32::MAX; q.len()];
     let mut keep: Vec<u32> = (0..vertices.len() as u32).collect();
     let mut welded = Vec::new();
     for (i, p) in q.iter().enumerate() {
@@ -543,11 +545,13 @@ fn weld(vertices: &[[f64; 3]], triangles: Vec<[u32; 3]>) -> (Vec<[u32; 3]>, Vec<
         'search: for dx in -1..=1 {
             for dy in -1..=1 {
                 for dz in -1..=1 {
-                    if let Some(list) = grid.get(&[c[0] + dx, c[1] + dy, c[2] + dz]) {
-                        if let Some(&j) = list.iter().find(|&&j| norm_sq(sub(q[j as usize], *p)) <= tol * tol) {
+                    let mut j = head.get(&[c[0] + dx, c[1] + dy, c[2] + dz]).copied().unwrap_or(u32::MAX);
+                    while j != u32::MAX {
+                        if norm_sq(sub(q[j as usize], *p)) <= tol * tol {
                             found = Some(j);
                             break 'search;
                         }
+                        j = next[j as usize];
                     }
                 }
             }
@@ -557,7 +561,11 @@ fn weld(vertices: &[[f64; 3]], triangles: Vec<[u32; 3]>) -> (Vec<[u32; 3]>, Vec<
                 keep[i] = j;
                 welded.push((i as u32, j));
             }
-            None => grid.entry(c).or_default().push(i as u32),
+            None => {
+                let slot = head.entry(c).or_insert(u32::MAX);
+                next[i] = *slot;
+                *slot = i as u32;
+            }
         }
     }
     if welded.is_empty() {
@@ -567,6 +575,42 @@ fn weld(vertices: &[[f64; 3]], triangles: Vec<[u32; 3]>) -> (Vec<[u32; 3]>, Vec<
     let triangles: Vec<[u32; 3]> = triangles.into_iter().map(|t| t.map(|v| keep[v as usize])).filter(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2]).collect();
     let collapsed = before - triangles.len();
     (triangles, welded, collapsed)
+}
+
+/// A fast hasher for grid cells (the multiply–rotate of rustc's FxHash): the standard SipHash
+/// made welding a 60k-vertex mesh cost 0.1 s, most of validation; cell keys are not
+/// attacker-chosen in a way that matters (a collision costs time, never a wrong weld).
+#[derive(Clone, Copy, Default)]
+struct CellHash;
+
+#[derive(Default)]
+struct CellHasher(u64);
+
+impl std::hash::BuildHasher for CellHash {
+    type Hasher = CellHasher;
+    fn build_hasher(&self) -> CellHasher {
+        CellHasher(0)
+    }
+}
+
+impl std::hash::Hasher for CellHasher {
+    fn finish(&self) -> u64 {
+        self.0
+    }
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.write_u64(b as u64);
+        }
+    }
+    fn write_u64(&mut self, x: u64) {
+        self.0 = (self.0.rotate_left(5) ^ x).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
+    }
+    fn write_i64(&mut self, x: i64) {
+        self.write_u64(x as u64);
+    }
+    fn write_usize(&mut self, x: usize) {
+        self.write_u64(x as u64);
+    }
 }
 
 /// The stray vertex of a mesh whose largest coordinate is more than 10¹² times the median
