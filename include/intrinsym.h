@@ -24,6 +24,18 @@
 #define WELD_REL 1e-6
 
 /**
+ * At most this many good pairs vote (those with the closest signatures): 12,000 pairs cost two
+ * relations of 18 MB each and about a second; the defaults (64 samples, quantile 0.2) give
+ * about 800.
+ */
+#define MAX_GOOD_PAIRS 12000
+
+/**
+ * At most this many seeds grow candidates (twice the default 64 samples).
+ */
+#define MAX_SEEDS 128
+
+/**
  * Result of every fallible `sym_` function.
  */
 typedef enum {
@@ -298,9 +310,9 @@ sym_status sym_params_set_proxy_vertices(sym_params *params, size_t value);
 sym_status sym_params_set_allow_non_manifold(sym_params *params, int value);
 
 /**
- * Nonzero: weld coincident vertices (default 1: vertices closer than 10⁻⁶ of the bounding-box
- * diagonal are one, as in an STL-style triangle soup; a welded vertex gets the map of the
- * vertex it joined); 0: keep them apart (added in 0.3).
+ * Nonzero: weld coincident vertices (default 1: boundary vertices closer than 10⁻⁶ of the
+ * bounding-box diagonal are one, as in an STL-style triangle soup or a split seam; a welded
+ * vertex gets the map of the vertex it joined); 0: keep them apart (added in 0.3).
  */
 sym_status sym_params_set_weld(sym_params *params, int value);
 

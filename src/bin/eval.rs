@@ -83,6 +83,22 @@ fn score_all(mesh: &Mesh, truths: &[(String, Vec<(usize, Vec<usize>)>)], params:
     let det = detect(mesh, params, &mut |_| true);
     let seconds = t.elapsed().as_secs_f64();
     let found = det.as_ref().map_or(0, |d| d.symmetries.len());
+    // Maps are in input indices; the scorer works on the processed mesh (welded, isolated or
+    // ignored vertices drop out).
+    let mut to_mesh = vec![-1i64; mesh.info.input_vertices];
+    for (i, &v) in mesh.input_index.iter().enumerate() {
+        to_mesh[v as usize] = i as i64;
+    }
+    let processed = |map: &[i64]| -> Vec<i64> {
+        let mut out = vec![-1i64; mesh.num_vertices()];
+        for (i, &v) in mesh.input_index.iter().enumerate() {
+            let image = map[v as usize];
+            if image >= 0 {
+                out[i] = to_mesh[image as usize];
+            }
+        }
+        out
+    };
     truths
         .iter()
         .map(|(name, truth)| {
@@ -92,7 +108,7 @@ fn score_all(mesh: &Mesh, truths: &[(String, Vec<(usize, Vec<usize>)>)], params:
             match &det {
                 Ok(d) => {
                     for (i, s) in d.symmetries.iter().enumerate() {
-                        let a = eval::accuracy(mesh, &s.map, truth, &[0.05, 0.10]);
+                        let a = eval::accuracy(mesh, &processed(&s.map), truth, &[0.05, 0.10]);
                         let v = &s.verdict;
                         symmetries.push(format!(
                             "{name}\t{i}\t{:.4}\t{:.4}\t{}\t{}\t{:.4}\t{:.4}\t{:.4}\t{:.5}\t{:.4}\t{:.4}",

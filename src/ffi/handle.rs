@@ -295,9 +295,9 @@ pub extern "C" fn sym_params_set_allow_non_manifold(params: *mut sym_params, val
     set(params, "sym_params_set_allow_non_manifold", "any", true, value, |p| p.mesh.allow_non_manifold = value != 0)
 }
 
-/// Nonzero: weld coincident vertices (default 1: vertices closer than 10⁻⁶ of the bounding-box
-/// diagonal are one, as in an STL-style triangle soup; a welded vertex gets the map of the
-/// vertex it joined); 0: keep them apart (added in 0.3).
+/// Nonzero: weld coincident vertices (default 1: boundary vertices closer than 10⁻⁶ of the
+/// bounding-box diagonal are one, as in an STL-style triangle soup or a split seam; a welded
+/// vertex gets the map of the vertex it joined); 0: keep them apart (added in 0.3).
 #[no_mangle]
 pub extern "C" fn sym_params_set_weld(params: *mut sym_params, value: c_int) -> sym_status {
     set(params, "sym_params_set_weld", "any", true, value, |p| p.mesh.weld = value != 0)
