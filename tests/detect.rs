@@ -241,6 +241,12 @@ fn json_report_has_the_documented_schema() {
     }
     let k = s["fmap_size"].as_u64().unwrap() as usize;
     assert_eq!(s["fmap"].as_array().unwrap().len(), k * k);
+    // What validation found, and the continuous-symmetry test (issue 16, items 2-4; issue 14).
+    for key in ["isolated_vertices", "components", "ignored_component_vertices", "non_manifold_edges", "degenerate_triangles", "welded_vertices", "collapsed_triangles"] {
+        assert!(j["mesh"][key].is_u64(), "missing mesh.{key}");
+    }
+    assert_eq!(j["mesh"]["components"], 1);
+    assert_eq!(j["continuous"]["dimension"], 0);
     assert_eq!(s["map"].as_array().unwrap().len(), c.mesh.num_vertices());
     let svg = intrinsym::output::report::svg(&d, "test");
     assert!(svg.starts_with("<svg") && svg.contains("symmetry space"));

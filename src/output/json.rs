@@ -7,6 +7,8 @@
 //!                "maps_proxy", "maps_profile", "maps_fmap", "maps_refine", "maps_polish", "maps_compose", "maps_lift",
 //!                "characterize", "cluster", "total" },           // seconds
 //!   "continuous": { "dimension": d, "residuals": [floats] },   // d > 0: a continuous family
+//!   "mesh": { "isolated_vertices", "components", "ignored_component_vertices",
+//!             "non_manifold_edges", "degenerate_triangles", "welded_vertices", "collapsed_triangles" },
 //!   "symmetries": [ { "id", "kind": "global"|"partial", "group", "order", "complexity",
 //!                     "distortion", "score", "orientation": "reversing"|"preserving",
 //!                     "reversal", "fixed", "source", "target", "support_pairs": [[a, b], …],
@@ -55,6 +57,15 @@ pub fn to_json(det: &Detection, params: &Params) -> Value {
         "vertices": det.vertices,
         "faces": det.faces,
         "continuous": { "dimension": det.continuous.dimension, "residuals": det.continuous.residuals },
+        "mesh": {
+            "isolated_vertices": det.mesh.isolated_vertices,
+            "components": det.mesh.components,
+            "ignored_component_vertices": det.mesh.ignored_component_vertices,
+            "non_manifold_edges": det.mesh.non_manifold_edges,
+            "degenerate_triangles": det.mesh.degenerate_triangles,
+            "welded_vertices": det.mesh.welded_vertices,
+            "collapsed_triangles": det.mesh.collapsed_triangles,
+        },
         "params": {
             "eigenpairs": params.eigen.k,
             "samples": params.samples,
