@@ -172,6 +172,36 @@ fn describe(p: usize, expected: &str) -> String {
 
 type Fail = (sym_status, String);
 
+/// Counts above this are refused as absurd: `3 ×` that many 8-byte values would not fit in the
+/// address space, so no caller can hold such arrays.
+const ABSURD_COUNT: usize = (isize::MAX as usize) / 32;
+
+/// The `struct_size` the caller declared in `*out`, at least `min` bytes (the struct's first
+/// version). Every versioned out-struct (`sym_symmetry`, `sym_mesh_report`) is `#[repr(C)]`
+/// with `struct_size: usize` first, so later versions may append fields.
+///
+/// # Safety
+/// `out` is non-NULL and its first `usize` initialised.
+unsafe fn declared_size<T>(out: *mut T, name: &str, min: usize) -> Result<usize, Fail> {
+    // SAFETY: `struct_size` is the first field (see above) and initialised by contract.
+    let size = unsafe { out.cast::<usize>().read() };
+    if size < min {
+        return Err(invalid(format!("out->struct_size is {size}, at least {min} (sizeof({name})) expected")));
+    }
+    Ok(size)
+}
+
+/// Copies the first `min(sizeof(T), caller_size)` bytes of `value` to `out`: the fields the
+/// caller's version of the struct has.
+///
+/// # Safety
+/// `out` has `caller_size` writable bytes.
+unsafe fn write_versioned<T>(out: *mut T, value: &T, caller_size: usize) {
+    let n = std::mem::size_of::<T>().min(caller_size);
+    // SAFETY: n ≤ caller_size writable bytes at `out`; `value` is a whole `T`.
+    unsafe { std::ptr::copy_nonoverlapping((value as *const T).cast::<u8>(), out.cast::<u8>(), n) };
+}
+
 fn null(name: &str) -> Fail {
     (sym_status::SYM_STATUS_NULL_PARAMETER, format!("{name} is NULL"))
 }
@@ -341,8 +371,7 @@ pub unsafe extern "C" fn sym_detect(
         if triangles.is_null() {
             return Err(null("triangles"));
         }
-        const LIMIT: usize = (isize::MAX as usize) / 32;
-        if num_vertices > LIMIT || num_triangles > LIMIT {
+        if num_vertices > ABSURD_COUNT || num_triangles > ABSURD_COUNT {
             return Err(invalid(format!("absurd sizes: {num_vertices} vertices, {num_triangles} triangles")));
         }
         let (params, mesh_params) = if params.is_null() {
@@ -405,12 +434,11 @@ pub unsafe extern "C" fn sym_get_map(result: *const sym_result, index: usize, ou
         if out.is_null() {
             return Err(null("out"));
         }
-        // SAFETY: `out` is non-NULL; struct_size is the first field and initialised by contract.
-        let caller_size = unsafe { std::ptr::addr_of!((*out).struct_size).read() };
+        // The smallest version: up to `support_pairs` (0.1; later fields are written only when
+        // `struct_size` covers them).
         let min = std::mem::offset_of!(sym_symmetry, support_pairs) + std::mem::size_of::<*const i64>();
-        if caller_size < min {
-            return Err(invalid(format!("out->struct_size is {caller_size}, at least {min} (sizeof(sym_symmetry)) expected")));
-        }
+        // SAFETY: `out` is non-NULL and its `struct_size` initialised (caller contract).
+        let caller_size = unsafe { declared_size(out, "sym_symmetry", min) }?;
         let s = r.det.symmetries.get(index).ok_or_else(|| invalid(format!("index {index} out of range (count {})", r.det.symmetries.len())))?;
         let value = sym_symmetry {
             struct_size: std::mem::size_of::<sym_symmetry>().min(caller_size),
@@ -436,9 +464,8 @@ pub unsafe extern "C" fn sym_get_map(result: *const sym_result, index: usize, ou
             reversal: s.verdict.reversal,
             fixed: s.verdict.fixed,
         };
-        let n = std::mem::size_of::<sym_symmetry>().min(caller_size);
-        // SAFETY: `out` has at least `caller_size` writable bytes (caller contract), n ≤ that.
-        unsafe { std::ptr::copy_nonoverlapping((&value as *const sym_symmetry).cast::<u8>(), out.cast::<u8>(), n) };
+        // SAFETY: `out` has `caller_size` writable bytes (caller contract).
+        unsafe { write_versioned(out, &value, caller_size) };
         Ok(())
     })
 }
@@ -465,12 +492,10 @@ pub unsafe extern "C" fn sym_get_mesh_report(result: *const sym_result, out: *mu
         if out.is_null() {
             return Err(null("out"));
         }
-        // SAFETY: `out` is non-NULL; struct_size is the first field and initialised by contract.
-        let caller_size = unsafe { std::ptr::addr_of!((*out).struct_size).read() };
+        // The smallest version: up to `collapsed_triangles` (0.3).
         let min = std::mem::offset_of!(sym_mesh_report, collapsed_triangles) + std::mem::size_of::<usize>();
-        if caller_size < min {
-            return Err(invalid(format!("out->struct_size is {caller_size}, at least {min} (sizeof(sym_mesh_report)) expected")));
-        }
+        // SAFETY: `out` is non-NULL and its `struct_size` initialised (caller contract).
+        let caller_size = unsafe { declared_size(out, "sym_mesh_report", min) }?;
         let i = &r.det.mesh;
         let value = sym_mesh_report {
             struct_size: std::mem::size_of::<sym_mesh_report>().min(caller_size),
@@ -484,9 +509,8 @@ pub unsafe extern "C" fn sym_get_mesh_report(result: *const sym_result, out: *mu
             welded_vertices: i.welded_vertices,
             collapsed_triangles: i.collapsed_triangles,
         };
-        let n = std::mem::size_of::<sym_mesh_report>().min(caller_size);
-        // SAFETY: `out` has at least `caller_size` writable bytes (caller contract), n ≤ that.
-        unsafe { std::ptr::copy_nonoverlapping((&value as *const sym_mesh_report).cast::<u8>(), out.cast::<u8>(), n) };
+        // SAFETY: `out` has `caller_size` writable bytes (caller contract).
+        unsafe { write_versioned(out, &value, caller_size) };
         Ok(())
     })
 }
@@ -510,7 +534,7 @@ pub unsafe extern "C" fn sym_correspondence_colours(xyz: *const f64, num_vertice
         if rgb.is_null() {
             return Err(null("rgb"));
         }
-        if num_vertices > (isize::MAX as usize) / 32 {
+        if num_vertices > ABSURD_COUNT {
             return Err(invalid(format!("absurd vertex count {num_vertices}")));
         }
         // SAFETY: non-NULL, bounded lengths; the caller guarantees the extents.
