@@ -111,52 +111,30 @@ pub fn continuous_symmetry(basis: &Eigenbasis, params: &ContinuousParams) -> Con
     // Products ⟨φ_p, φ_j φ_q⟩ for p, q, j < K (symmetric in all three).
     let n = basis.evecs.nrows();
     let phi = basis.evecs.subcols(0, k);
-    let triple = |p: usize, j: usize, q: usize, cache: &[Mat<f64>]| cache[j][(p, q)];
     let indices: Vec<usize> = (0..k).collect();
     let products: Vec<Mat<f64>> = crate::parallel::map(&indices, |&j| {
         let w = Mat::<f64>::from_fn(n, k, |v, q| basis.mass[v] * phi[(v, j)] * phi[(v, q)]);
         phi.transpose() * &w
     });
-    // The cluster of each index, to run the sums over one block only.
-    let mut block = vec![None; k];
-    for (g, range) in groups.iter().enumerate() {
-        for i in range.clone() {
-            block[i] = Some(g);
-        }
-    }
-    let members = |i: usize| -> std::ops::Range<usize> {
-        block[i].map(|g| groups[g].clone()).unwrap_or(i..i)
-    };
-    // A for one unknown: +1 at (a, b), −1 at (b, a).
-    let entry = |x: (usize, usize), r: usize, c: usize| -> f64 {
-        if (r, c) == x {
-            1.0
-        } else if (c, r) == x {
-            -1.0
-        } else {
-            0.0
-        }
-    };
-    // Rows of the three linear terms for each unknown, over every (p, q, j).
+    let triple = |p: usize, j: usize, q: usize| products[j][(p, q)];
+    // Rows of the three linear terms for each unknown, over every (p, q, j). The unknown
+    // `(a, b)` is the skew matrix with `A_ab = 1`, `A_ba = −1`, so each sum over a cluster has
+    // at most one non-zero term: `Σ_r A_pr T(r,j,q)` is `T(b,j,q)` at `p = a`, `−T(a,j,q)` at
+    // `p = b` and 0 elsewhere, and likewise in `q` and in `j`.
+    let pick = |a: usize, b: usize, i: usize, at_a: f64, at_b: f64| if i == a { at_a } else if i == b { -at_b } else { 0.0 };
     let rows = k * k * k;
     let mut terms: [Mat<f64>; 3] = std::array::from_fn(|_| Mat::<f64>::zeros(rows, u));
-    for (col, &x) in unknowns.iter().enumerate() {
+    for (col, &(a, b)) in unknowns.iter().enumerate() {
         for j in 0..k {
             for q in 0..k {
                 for p in 0..k {
                     let row = (j * k + q) * k + p;
-                    let t1: f64 = members(p)
-                        .map(|r| entry(x, p, r) * triple(r, j, q, &products))
-                        .sum();
-                    let t2: f64 = members(q)
-                        .map(|s| triple(p, j, s, &products) * entry(x, s, q))
-                        .sum();
-                    let t3: f64 = members(j)
-                        .map(|s| entry(x, s, j) * triple(p, q, s, &products))
-                        .sum();
-                    terms[0][(row, col)] = t1;
-                    terms[1][(row, col)] = -t2;
-                    terms[2][(row, col)] = -t3;
+                    // Σ_r A_pr ⟨φ_r, φ_j φ_q⟩
+                    terms[0][(row, col)] = pick(a, b, p, triple(b, j, q), triple(a, j, q));
+                    // −Σ_s ⟨φ_p, φ_j φ_s⟩ A_sq
+                    terms[1][(row, col)] = -pick(a, b, q, -triple(p, j, b), -triple(p, j, a));
+                    // −Σ_s A_sj ⟨φ_p, φ_q φ_s⟩
+                    terms[2][(row, col)] = -pick(a, b, j, -triple(p, q, b), -triple(p, q, a));
                 }
             }
         }
@@ -206,8 +184,7 @@ mod tests {
     use crate::spectral::EigenParams;
 
     fn test(mesh: &crate::mesh::Mesh) -> Continuous {
-        let mut e = EigenParams::default();
-        e.k = 30;
+        let e = EigenParams { k: 30, ..Default::default() };
         continuous_symmetry(
             &Eigenbasis::compute(mesh, &e).unwrap(),
             &ContinuousParams::default(),
