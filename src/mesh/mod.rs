@@ -259,25 +259,28 @@ impl Mesh {
                 return Err(MeshError::RepeatedIndex { triangle: ti });
             }
         }
-        let (triangles, welded, collapsed_triangles) = if params.weld { weld(&vertices, triangles) } else { (triangles, Vec::new(), 0) };
+        // Areas, degeneracy and welding are measured on the coordinates divided by their
+        // largest magnitude: a triangle's squared-area arithmetic goes to the fourth power of
+        // the coordinates, which overflows from 1e77 and underflows below 1e-77 (issue 16,
+        // item 1).
+        let (unit, unit_vertices) = unit_scaled(&vertices);
+        // The sorted edge keys serve welding (boundary edges) and the manifold check.
+        let keys = sorted_edge_keys(&triangles);
+        let (triangles, welded, collapsed_triangles) = if params.weld { weld(&unit_vertices, triangles, &keys) } else { (triangles, Vec::new(), 0) };
         if triangles.is_empty() {
             return Err(outlier(&vertices).unwrap_or(MeshError::Degenerate));
         }
         let (input_triangles, m) = (m, triangles.len());
-        let non_manifold_edges = match check_edge_manifold(&triangles) {
+        let keys = if welded.is_empty() { keys } else { sorted_edge_keys(&triangles) };
+        let non_manifold_edges = match check_edge_manifold(&keys) {
             Ok(()) => 0,
             Err(e) if !params.allow_non_manifold => return Err(e),
-            Err(_) => count_non_manifold_edges(&triangles),
+            Err(_) => count_non_manifold_edges(&keys),
         };
 
-        // Areas and degeneracy are measured on the coordinates divided by their largest
-        // magnitude: a triangle's squared-area arithmetic goes to the fourth power of the
-        // coordinates, which overflows from 1e77 and underflows below 1e-77 (issue 16, item 1).
-        let unit = vertices.iter().flat_map(|p| p.iter()).fold(0.0f64, |m, x| m.max(x.abs()));
         if unit == 0.0 {
             return Err(MeshError::Degenerate);
         }
-        let unit_vertices: Vec<[f64; 3]> = vertices.iter().map(|p| p.map(|x| x / unit)).collect();
         let areas: Vec<f64> = triangles.iter().map(|t| triangle_area(&unit_vertices, t)).collect();
         let degenerate = triangles
             .iter()
@@ -348,7 +351,7 @@ impl Mesh {
             welded: welded.clone(),
             info: MeshInfo {
                 input_vertices: n,
-                input_triangles: input_triangles,
+                input_triangles,
                 degenerate_triangles: kept_degenerate,
                 isolated_vertices: isolated,
                 components,
@@ -376,17 +379,9 @@ impl Mesh {
     /// mesh in millimetres, in kilometres or far from the origin gives the same result (issue
     /// 16, item 1). Computed without overflow for any finite coordinates.
     pub fn normalized(&self) -> (Mesh, f64) {
-        let unit = self.vertices.iter().flat_map(|p| p.iter()).fold(0.0f64, |m, x| m.max(x.abs()));
+        let (unit, mut q) = unit_scaled(&self.vertices);
         let unit = if unit > 0.0 { unit } else { 1.0 };
-        let mut lo = [f64::INFINITY; 3];
-        let mut hi = [f64::NEG_INFINITY; 3];
-        let mut q: Vec<[f64; 3]> = self.vertices.iter().map(|p| p.map(|x| x / unit)).collect();
-        for p in &q {
-            for d in 0..3 {
-                lo[d] = lo[d].min(p[d]);
-                hi[d] = hi[d].max(p[d]);
-            }
-        }
+        let (lo, hi) = bounding_box(&q);
         let centre = [0, 1, 2].map(|d| 0.5 * (lo[d] + hi[d]));
         for p in &mut q {
             *p = sub(*p, centre);
@@ -499,33 +494,46 @@ impl Mesh {
 
     /// Length of the bounding-box diagonal.
     pub fn bbox_diagonal(&self) -> f64 {
-        let mut lo = [f64::INFINITY; 3];
-        let mut hi = [f64::NEG_INFINITY; 3];
-        for p in &self.vertices {
-            for d in 0..3 {
-                lo[d] = lo[d].min(p[d]);
-                hi[d] = hi[d].max(p[d]);
-            }
-        }
-        ((hi[0] - lo[0]).powi(2) + (hi[1] - lo[1]).powi(2) + (hi[2] - lo[2]).powi(2)).sqrt()
+        let (lo, hi) = bounding_box(&self.vertices);
+        norm_sq(sub(hi, lo)).sqrt()
     }
 }
 
-/// Welds vertices closer than [`WELD_REL`] times the bounding-box diagonal (a hash grid of
-/// that cell size; each vertex joins the first earlier one within reach). Returns the
-/// triangles on the kept vertices without those that collapsed, the `(welded, kept)` pairs
-/// and the number of collapsed triangles.
-fn weld(vertices: &[[f64; 3]], triangles: Vec<[u32; 3]>) -> (Vec<[u32; 3]>, Vec<(u32, u32)>, usize) {
-    let unit = vertices.iter().flat_map(|p| p.iter()).fold(0.0f64, |m, x| m.max(x.abs()));
+/// The points divided by their largest coordinate magnitude (so every coordinate is in
+/// [−1, 1]) and that magnitude; 0 and the points unchanged when every coordinate is 0.
+fn unit_scaled(points: &[[f64; 3]]) -> (f64, Vec<[f64; 3]>) {
+    let unit = points.iter().flat_map(|p| p.iter()).fold(0.0f64, |m, x| m.max(x.abs()));
     if unit == 0.0 {
-        return (triangles, Vec::new(), 0);
+        return (0.0, points.to_vec());
     }
+    (unit, points.iter().map(|p| p.map(|x| x / unit)).collect())
+}
+
+/// The corners `(lo, hi)` of the axis-aligned bounding box of `points`.
+pub(crate) fn bounding_box(points: &[[f64; 3]]) -> ([f64; 3], [f64; 3]) {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for p in points {
+        for d in 0..3 {
+            lo[d] = lo[d].min(p[d]);
+            hi[d] = hi[d].max(p[d]);
+        }
+    }
+    (lo, hi)
+}
+
+/// Welds the boundary vertices of `q` (the coordinates scaled by [`unit_scaled`]) closer than
+/// [`WELD_REL`] times the bounding-box diagonal (a hash grid of that cell size; each vertex
+/// joins the first earlier one within reach); `keys` are the triangles' sorted edge keys
+/// ([`sorted_edge_keys`]), which tell the boundary. Returns the triangles on the kept vertices
+/// without those that collapsed, the `(welded, kept)` pairs and the number of collapsed
+/// triangles.
+fn weld(q: &[[f64; 3]], triangles: Vec<[u32; 3]>, keys: &[u64]) -> (Vec<[u32; 3]>, Vec<(u32, u32)>, usize) {
     // Only vertices on a boundary edge (an edge of one triangle) are welded: a seam's or a
     // triangle soup's copies lie on boundaries, while two coincident vertices inside closed
     // sheets are a self-contact (FAUST has a few), and gluing them would pinch the surface into
     // non-manifold edges (measured: FAUST tr_reg_004's first symmetry 31% -> 7%).
-    let keys = sorted_edge_keys(&triangles);
-    let mut on_boundary = vec![false; vertices.len()];
+    let mut on_boundary = vec![false; q.len()];
     for run in keys.chunk_by(|a, b| a == b) {
         if run.len() == 1 {
             on_boundary[(run[0] >> 32) as usize] = true;
@@ -535,15 +543,7 @@ fn weld(vertices: &[[f64; 3]], triangles: Vec<[u32; 3]>) -> (Vec<[u32; 3]>, Vec<
     if !on_boundary.iter().any(|&b| b) {
         return (triangles, Vec::new(), 0);
     }
-    let q: Vec<[f64; 3]> = vertices.iter().map(|p| p.map(|x| x / unit)).collect();
-    let mut lo = [f64::INFINITY; 3];
-    let mut hi = [f64::NEG_INFINITY; 3];
-    for p in &q {
-        for d in 0..3 {
-            lo[d] = lo[d].min(p[d]);
-            hi[d] = hi[d].max(p[d]);
-        }
-    }
+    let (lo, hi) = bounding_box(q);
     let diagonal = norm_sq(sub(hi, lo)).sqrt();
     let tol = WELD_REL * diagonal;
     if tol <= 0.0 {
@@ -553,7 +553,7 @@ fn weld(vertices: &[[f64; 3]], triangles: Vec<[u32; 3]>) -> (Vec<[u32; 3]>, Vec<
     // Each cell holds a chain of vertices: the first in `head`, the rest through `next`.
     let mut head: std::collections::HashMap<[i64; 3], u32, CellHash> = std::collections::HashMap::with_capacity_and_hasher(q.len(), CellHash);
     let mut next: Vec<u32> = vec![u32::MAX; q.len()];
-    let mut keep: Vec<u32> = (0..vertices.len() as u32).collect();
+    let mut keep: Vec<u32> = (0..q.len() as u32).collect();
     let mut welded = Vec::new();
     for (i, p) in q.iter().enumerate() {
         if !on_boundary[i] {
@@ -678,14 +678,14 @@ fn sorted_edge_keys(triangles: &[[u32; 3]]) -> Vec<u64> {
     keys
 }
 
-fn count_non_manifold_edges(triangles: &[[u32; 3]]) -> usize {
-    let keys = sorted_edge_keys(triangles);
+/// Edges shared by more than two triangles, from the sorted edge keys ([`sorted_edge_keys`]).
+fn count_non_manifold_edges(keys: &[u64]) -> usize {
     keys.chunk_by(|a, b| a == b).filter(|run| run.len() > 2).count()
 }
 
-/// Errors on the first edge shared by more than two triangles (reported with input indices).
-fn check_edge_manifold(triangles: &[[u32; 3]]) -> Result<(), MeshError> {
-    let keys = sorted_edge_keys(triangles);
+/// Errors on the first edge shared by more than two triangles (reported with input indices),
+/// from the sorted edge keys.
+fn check_edge_manifold(keys: &[u64]) -> Result<(), MeshError> {
     let mut i = 0;
     while i < keys.len() {
         let mut j = i + 1;

@@ -20,14 +20,7 @@ pub const OUTSIDE: [u8; 3] = [150, 150, 150];
 
 /// `(n,)` colours in which `v` and `map[v]` agree (for an involution exactly).
 pub fn correspondence_colours(vertices: &[[f64; 3]], map: &[i64]) -> Vec<[u8; 3]> {
-    let mut lo = [f64::INFINITY; 3];
-    let mut hi = [f64::NEG_INFINITY; 3];
-    for p in vertices {
-        for d in 0..3 {
-            lo[d] = lo[d].min(p[d]);
-            hi[d] = hi[d].max(p[d]);
-        }
-    }
+    let (lo, hi) = crate::mesh::bounding_box(vertices);
     // Bounding-box coordinates in [−1, 1].
     let unit = |p: &[f64; 3], d: usize| if hi[d] > lo[d] { (2.0 * p[d] - lo[d] - hi[d]) / (hi[d] - lo[d]) } else { 0.0 };
     vertices
@@ -105,7 +98,6 @@ mod tests {
     use super::*;
     use crate::mesh::read_mesh;
 
-    #[test]
     /// A sphere's antipodal map paints the sphere in many colours, not one (issue 16, item 21),
     /// and a vertex and its image share theirs.
     #[test]
