@@ -154,7 +154,7 @@ bool FilterIntrinsymPlugin::applyFilter(QAction *, MeshDocument &md, const RichP
     // Non-manifold edges are accepted and coincident vertices welded (the library's defaults).
     // There is deliberately no parameter for either: MeshLab 2020.09's meshlabserver aborts
     // (an assertion) on a script that does not list every parameter of a filter, so a new
-    // parameter would crash every saved script (docs/meshlab.md).
+    // parameter would crash every saved script (README, "Using intrinsym in MeshLab", pitfalls).
     if (st != SYM_STATUS_OK) {
         sym_params_free(params);
         return fail(QString("invalid parameter: ") + last_error());
