@@ -100,11 +100,26 @@ fn face_geometry(mesh: &Mesh, triangles: &[[u32; 3]]) -> FaceGeometry {
     FaceGeometry { area, normal, hat }
 }
 
-/// The `(K, K)` orientation-reversing functional map of `mesh` onto itself from its descriptors
-/// `desc` `(n, E)`, or `None` when the system is singular (a degenerate mesh) or `K < 2`.
-/// `triangles` are the mesh's, consistently oriented ([`Mesh::oriented_triangles`]: the
-/// orientation operators need one orientation).
-pub fn reversing_fmap(mesh: &Mesh, triangles: &[[u32; 3]], basis: &Eigenbasis, desc: &Mat<f64>, params: &OrientationParams) -> Option<Mat<f64>> {
+/// The descriptors' operators of one shape in its first `K` eigenfunctions: `A = Φᵀ M F`,
+/// `D_f` and `G_f` per descriptor `f`, and the eigenvalues.
+pub struct Operators {
+    a: Mat<f64>,
+    d: Vec<Mat<f64>>,
+    g: Vec<Mat<f64>>,
+    evals: Vec<f64>,
+}
+
+impl Operators {
+    /// `K`, the size of the functional maps these serve.
+    pub fn k(&self) -> usize {
+        self.a.nrows()
+    }
+}
+
+/// The operators of `mesh` from its descriptors `desc` `(n, E)`, or `None` when `K < 2` or the
+/// descriptors do not fit the mesh. `triangles` are the mesh's, consistently oriented
+/// ([`Mesh::oriented_triangles`]: the orientation operators need one orientation).
+pub fn operators(mesh: &Mesh, triangles: &[[u32; 3]], basis: &Eigenbasis, desc: &Mat<f64>, params: &OrientationParams) -> Option<Operators> {
     let n = mesh.num_vertices();
     let k = params.k.min(basis.k());
     if k < 2 || desc.ncols() == 0 || desc.nrows() != n {
@@ -154,54 +169,86 @@ pub fn reversing_fmap(mesh: &Mesh, triangles: &[[u32; 3]], basis: &Eigenbasis, d
         matmul(g.as_mut(), Accum::Replace, phi_bar.transpose(), s.as_ref(), 1.0, Par::Seq);
         (d, g)
     });
-    let (d_ops, g_ops): (Vec<Mat<f64>>, Vec<Mat<f64>>) = ops.into_iter().unzip();
-    solve(&a, &basis.evals[..k], &d_ops, &g_ops, params)
+    let (d, g): (Vec<Mat<f64>>, Vec<Mat<f64>>) = ops.into_iter().unzip();
+    Some(Operators { a, d, g, evals: basis.evals[..k].to_vec() })
 }
 
-/// The normal equations of the energy in `vec(C)` (column-major: entry `(i, j)` at `j·K + i`),
-/// solved by Cholesky.
-fn solve(a: &Mat<f64>, evals: &[f64], d_ops: &[Mat<f64>], g_ops: &[Mat<f64>], params: &OrientationParams) -> Option<Mat<f64>> {
-    let k = a.nrows();
-    let p = a.ncols() as f64;
+/// The `(K, K)` orientation-reversing functional map of `mesh` onto itself from its descriptors
+/// `desc` `(n, E)`, or `None` when the system is singular (a degenerate mesh) or `K < 2`.
+/// `triangles` are the mesh's, consistently oriented ([`Mesh::oriented_triangles`]: the
+/// orientation operators need one orientation).
+pub fn reversing_fmap(mesh: &Mesh, triangles: &[[u32; 3]], basis: &Eigenbasis, desc: &Mat<f64>, params: &OrientationParams) -> Option<Mat<f64>> {
+    let ops = operators(mesh, triangles, basis, desc, params)?;
+    solve(&ops, &ops, true, params)
+}
+
+/// The `(K, K)` functional map of a map `T` from one shape (`src`) to another (`dst`) whose
+/// descriptors are the same functions (congruent shapes, [`super::congruent`]), with
+/// `Φ_dst(T v) ≈ Φ_src(v) C`: the same energy with each term between the two shapes,
+/// `‖C A_dst − A_src‖²`, `‖C Λ_dst − Λ_src C‖²`, `Σ‖C D^dst_f − D^src_f C‖²` and
+/// `Σ‖C G^dst_f ± G^src_f C‖²` (`+` when `reversing`: a mirror image, a left and a right shoe;
+/// `−` for a copy). Between two shapes the identity is no solution, so both types can be
+/// asked for. `None` when the sizes differ or the system is singular.
+pub fn fmap_between(src: &Operators, dst: &Operators, reversing: bool, params: &OrientationParams) -> Option<Mat<f64>> {
+    (src.k() == dst.k() && src.a.ncols() == dst.a.ncols()).then(|| solve(src, dst, reversing, params)).flatten()
+}
+
+/// The normal equations of the energy between `src` and `dst` (the same operators for a map of
+/// a shape onto itself) in `vec(C)` (column-major: entry `(i, j)` at `j·K + i`), solved by
+/// Cholesky. Every term has the form `‖C X ∓ Y C‖²` with `X` of `dst` and `Y` of `src`,
+/// whose normal matrix is `X Xᵀ ⊗ I ∓ (X ⊗ Y + Xᵀ ⊗ Yᵀ) + I ⊗ YᵀY`.
+fn solve(src: &Operators, dst: &Operators, reversing: bool, params: &OrientationParams) -> Option<Mat<f64>> {
+    let k = src.k();
+    let p = src.a.ncols() as f64;
     let kk = k * k;
     let total = params.w_descr + params.w_lap + params.w_dcomm + params.w_orient;
     if total.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
         return None;
     }
-    // pyFM's normalisers (canonical_taus with k1 = k2 = K): the scale of each term.
+    // pyFM's normalisers (canonical_taus with k1 = k2 = K): the scale of each term, the mean
+    // of the two shapes'.
     let frob = |m: &Mat<f64>| m.norm_l2().powi(2);
-    let tau_descr = ((1..k).map(|i| (0..a.ncols()).map(|j| a[(i, j)].powi(2)).sum::<f64>()).sum::<f64>() / p).max(1e-300);
-    let lap = |i: usize, j: usize| (evals[i] - evals[j]).powi(2);
-    let tau_lap = ((0..k).flat_map(|i| (0..k).map(move |j| (i, j))).map(|(i, j)| lap(i, j)).sum::<f64>() / k as f64).max(1e-300);
-    let tau_dcomm = (d_ops.iter().map(|d| 2.0 * k as f64 * frob(d) - 2.0 * (0..k).map(|i| d[(i, i)]).sum::<f64>().powi(2)).sum::<f64>() / k as f64 / p).max(1e-300);
-    let tau_orient = (g_ops.iter().map(|g| 2.0 * k as f64 * frob(g)).sum::<f64>() / k as f64 / p).max(1e-300);
+    let tau = |ops: &Operators| {
+        let (a, evals) = (&ops.a, &ops.evals);
+        let descr = (1..k).map(|i| (0..a.ncols()).map(|j| a[(i, j)].powi(2)).sum::<f64>()).sum::<f64>() / p;
+        let lap = (0..k).flat_map(|i| (0..k).map(move |j| (i, j))).map(|(i, j)| (evals[i] - evals[j]).powi(2)).sum::<f64>() / k as f64;
+        let dcomm = ops.d.iter().map(|d| 2.0 * k as f64 * frob(d) - 2.0 * (0..k).map(|i| d[(i, i)]).sum::<f64>().powi(2)).sum::<f64>() / k as f64 / p;
+        let orient = ops.g.iter().map(|g| 2.0 * k as f64 * frob(g)).sum::<f64>() / k as f64 / p;
+        [descr, lap, dcomm, orient]
+    };
+    let (ts, td) = (tau(src), tau(dst));
+    let [tau_descr, tau_lap, tau_dcomm, tau_orient] = std::array::from_fn(|i| (0.5 * (ts[i] + td[i])).max(1e-300));
     let (wd, wl, wc, wo) = (params.w_descr / total / tau_descr, params.w_lap / total / tau_lap, params.w_dcomm / total / tau_dcomm, params.w_orient / total / tau_orient);
+    // The orientation term's sign: `C G + G C` for a reversing map, `C G − G C` otherwise.
+    let sigma = if reversing { 1.0 } else { -1.0 };
+    // Laplacian: (λ^dst_j − λ^src_i)² on entry (i, j).
+    let lap = |i: usize, j: usize| (dst.evals[j] - src.evals[i]).powi(2);
 
     // The normal matrix as a sum of Kronecker products `w · (X ⊗ Y)`, where
     // `(X ⊗ Y)[(j1·K + i1), (j2·K + i2)] = X[j1, j2] · Y[i1, i2]`. Terms with a factor `I`
     // are summed over the descriptors first (Σ_f D_f² ⊗ I = (Σ_f D_f²) ⊗ I).
     let eye = Mat::<f64>::identity(k, k);
     let zero = Mat::<f64>::zeros(k, k);
-    // Descriptors: ‖(Aᵀ ⊗ I) c − vec A‖² → A Aᵀ ⊗ I, right side vec(A Aᵀ).
-    let aat = a * a.transpose();
-    // Multiplication operators (symmetric): (D ⊗ I − I ⊗ D)ᵀ(D ⊗ I − I ⊗ D) = D² ⊗ I + I ⊗ D² − 2 D ⊗ D.
-    // Orientation (reversing): K = Gᵀ ⊗ I + I ⊗ G, KᵀK = G Gᵀ ⊗ I + G ⊗ G + Gᵀ ⊗ Gᵀ + I ⊗ GᵀG.
+    // Descriptors: ‖(A_dstᵀ ⊗ I) c − vec A_src‖² → A_dst A_dstᵀ ⊗ I, right side vec(A_src A_dstᵀ).
+    let aat = &dst.a * dst.a.transpose();
+    let rhs_descr = &src.a * dst.a.transpose();
+    // Multiplication operators (symmetric): D_dst² ⊗ I + I ⊗ D_src² − 2 D_dst ⊗ D_src.
+    // Orientation: G_dst G_dstᵀ ⊗ I + I ⊗ G_srcᵀG_src ± (G_dst ⊗ G_src + G_dstᵀ ⊗ G_srcᵀ).
     let mut left = &aat * wd; // X of X ⊗ I
     let mut right = zero.clone(); // Y of I ⊗ Y
-    for d in d_ops {
-        let d2 = d * d;
-        left += &d2 * wc;
-        right += &d2 * wc;
+    for (ds, dd) in src.d.iter().zip(&dst.d) {
+        left += (dd * dd) * wc;
+        right += (ds * ds) * wc;
     }
-    for g in g_ops {
-        left += (g * g.transpose()) * wo;
-        right += (g.transpose() * g) * wo;
+    for (gs, gd) in src.g.iter().zip(&dst.g) {
+        left += (gd * gd.transpose()) * wo;
+        right += (gs.transpose() * gs) * wo;
     }
     let mut terms: Vec<(f64, &Mat<f64>, &Mat<f64>)> = vec![(1.0, &left, &eye), (1.0, &eye, &right)];
-    let transposed: Vec<Mat<f64>> = g_ops.iter().map(|g| g.transpose().to_owned()).collect();
-    terms.extend(d_ops.iter().map(|d| (-2.0 * wc, d, d)));
-    terms.extend(g_ops.iter().map(|g| (wo, g, g)));
-    terms.extend(transposed.iter().map(|g| (wo, g, g)));
+    let transposed: Vec<(Mat<f64>, Mat<f64>)> = src.g.iter().zip(&dst.g).map(|(gs, gd)| (gd.transpose().to_owned(), gs.transpose().to_owned())).collect();
+    terms.extend(dst.d.iter().zip(&src.d).map(|(dd, ds)| (-2.0 * wc, dd, ds)));
+    terms.extend(dst.g.iter().zip(&src.g).map(|(gd, gs)| (sigma * wo, gd, gs)));
+    terms.extend(transposed.iter().map(|(gd, gs)| (sigma * wo, gd, gs)));
     // Columns of the normal matrix, built on all cores.
     let blocks = crate::parallel::chunks(kk, |cols| {
         let mut out = vec![0.0; cols.len() * kk];
@@ -219,7 +266,6 @@ fn solve(a: &Mat<f64>, evals: &[f64], d_ops: &[Mat<f64>], g_ops: &[Mat<f64>], pa
                     }
                 }
             }
-            // Laplacian: (λ_j − λ_i)² on entry (i, j).
             col[c] += wl * lap(i2, j2);
         }
         out
@@ -229,7 +275,7 @@ fn solve(a: &Mat<f64>, evals: &[f64], d_ops: &[Mat<f64>], g_ops: &[Mat<f64>], pa
     let mut rhs = Mat::<f64>::zeros(kk, 1);
     for j in 0..k {
         for i in 0..k {
-            rhs[(j * k + i, 0)] = wd * aat[(i, j)];
+            rhs[(j * k + i, 0)] = wd * rhs_descr[(i, j)];
         }
     }
     // A tiny ridge keeps the system definite when a term leaves directions free.

@@ -81,11 +81,27 @@ pub fn robust_fit(basis: &Eigenbasis, pairs: &[(usize, usize)], k0: usize) -> Ma
 /// neighbours (or, for the first of each component of the visit, a coarse search over
 /// `search`) and descends on the mesh graph.
 pub fn point_map(basis: &Eigenbasis, adjacency: &(Vec<usize>, Vec<u32>), c: &Mat<f64>, search: &[usize]) -> Vec<usize> {
-    let n = basis.num_vertices();
+    point_map_between(basis, adjacency, basis, adjacency, c, search)
+}
+
+/// [`point_map`] from one shape (`src`, visited breadth-first on its graph) to another (`dst`,
+/// `Φ_dst(T v) ≈ Φ_src(v) C₀`; the descents on its graph, the coarse search over its vertices
+/// `search`).
+pub fn point_map_between(
+    src: &Eigenbasis,
+    src_adjacency: &(Vec<usize>, Vec<u32>),
+    dst: &Eigenbasis,
+    dst_adjacency: &(Vec<usize>, Vec<u32>),
+    c: &Mat<f64>,
+    search: &[usize],
+) -> Vec<usize> {
+    let n = src.num_vertices();
     let k0 = c.nrows();
-    let rows = super::row_major(basis.evecs.as_ref(), k0);
+    let from = super::row_major(src.evecs.as_ref(), k0);
+    let rows = if std::ptr::eq(src, dst) { None } else { Some(super::row_major(dst.evecs.as_ref(), k0)) };
+    let rows = rows.as_deref().unwrap_or(&from);
     let dist = |w: usize, t: &[f64]| -> f64 { super::squared_distance(&rows[w * k0..(w + 1) * k0], t) };
-    let nbrs = |w: usize| &adjacency.1[adjacency.0[w]..adjacency.0[w + 1]];
+    let nbrs = |w: usize| &src_adjacency.1[src_adjacency.0[w]..src_adjacency.0[w + 1]];
     let mut target = vec![0.0; k0];
     let mut map = vec![usize::MAX; n];
     let mut queued = vec![false; n];
@@ -98,7 +114,7 @@ pub fn point_map(basis: &Eigenbasis, adjacency: &(Vec<usize>, Vec<u32>), c: &Mat
         queue.push_back(root);
         while let Some(v) = queue.pop_front() {
             for (q, t) in target.iter_mut().enumerate() {
-                *t = (0..k0).map(|p| rows[v * k0 + p] * c[(p, q)]).sum();
+                *t = (0..k0).map(|p| from[v * k0 + p] * c[(p, q)]).sum();
             }
             let mut w = usize::MAX;
             let mut best = f64::INFINITY;
@@ -113,9 +129,9 @@ pub fn point_map(basis: &Eigenbasis, adjacency: &(Vec<usize>, Vec<u32>), c: &Mat
                 }
             }
             if w == usize::MAX {
-                w = search.iter().copied().min_by(|&a, &b| dist(a, &target).total_cmp(&dist(b, &target))).unwrap_or(v);
+                w = search.iter().copied().min_by(|&a, &b| dist(a, &target).total_cmp(&dist(b, &target))).unwrap_or(if v < dst.num_vertices() { v } else { 0 });
             }
-            let w = super::greedy_descent(adjacency, w, |u| dist(u, &target)).0;
+            let w = super::greedy_descent(dst_adjacency, w, |u| dist(u, &target)).0;
             map[v] = w;
             for &u in nbrs(v) {
                 if !queued[u as usize] {

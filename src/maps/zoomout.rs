@@ -68,15 +68,35 @@ pub fn zoomout(basis: &Eigenbasis, adjacency: &(Vec<usize>, Vec<u32>), map: &mut
 
 /// [`zoomout`] with the shared data of a basis (`k1` is capped at its size).
 pub fn zoomout_with(zb: &ZoomBasis, adjacency: &(Vec<usize>, Vec<u32>), map: &mut [usize], k0: usize, k1: usize, step: usize) {
+    zoomout_between(zb, adjacency, zb, adjacency, map, k0, k1, step)
+}
+
+/// ZoomOut of a map from one shape (`src`: its subset, `M Φ` and graph) to another (`dst`:
+/// the nearest neighbours among its vertices, descents on its graph), `Φ_dst(T v) ≈ Φ_src(v)
+/// C_k` with `C_k = (M Φ_src,k)ᵀ Φ_dst,k[T]`; the two are one for a self-map. `k1` is capped at
+/// the smaller basis.
+#[allow(clippy::too_many_arguments)]
+pub fn zoomout_between(
+    src: &ZoomBasis,
+    src_adjacency: &(Vec<usize>, Vec<u32>),
+    dst: &ZoomBasis,
+    adjacency: &(Vec<usize>, Vec<u32>),
+    map: &mut [usize],
+    k0: usize,
+    k1: usize,
+    step: usize,
+) {
+    let zb = src;
     let n = zb.rows.len() / zb.stride;
-    let kmax = k1.min(zb.stride);
+    let kmax = k1.min(zb.stride).min(dst.stride);
     let mut k = k0.min(kmax).max(1);
-    let (rows, stride, sub, mphi) = (&zb.rows, zb.stride, &zb.sub, &zb.mphi);
-    let dist = |w: usize, target: &[f64]| -> f64 { super::squared_distance(&rows[w * stride..w * stride + target.len()], target) };
+    let (from, stride, sub, mphi) = (&zb.rows, zb.stride, &zb.sub, &zb.mphi);
+    let (rows, dst_stride) = (&dst.rows, dst.stride);
+    let dist = |w: usize, target: &[f64]| -> f64 { super::squared_distance(&rows[w * dst_stride..w * dst_stride + target.len()], target) };
     // Targets Φ_k(v) C_k of the vertices `vs`, one gemm: column r of `(C_kᵀ Φ_k(vs)ᵀ)` is the
     // target of vs[r], contiguous for the descent. Column v of the row-major Φ read as a
     // `(stride, n)` column-major matrix is Φ(v): all vertices need no copy.
-    let all_phi = MatRef::from_column_major_slice_with_stride(rows, stride, n, stride);
+    let all_phi = MatRef::from_column_major_slice_with_stride(from, stride, n, stride);
     let product = |c: &Mat<f64>, phi: MatRef<'_, f64>| -> Mat<f64> {
         let mut t = Mat::<f64>::zeros(c.nrows(), phi.ncols());
         faer::linalg::matmul::matmul(t.as_mut(), Accum::Replace, c.transpose(), phi, 1.0, Par::Seq);
@@ -84,7 +104,7 @@ pub fn zoomout_with(zb: &ZoomBasis, adjacency: &(Vec<usize>, Vec<u32>), map: &mu
     };
     // The targets of the vertices `range` (no copy), or of the vertices `vs` (gathered).
     let targets_in = |range: std::ops::Range<usize>, c: &Mat<f64>| product(c, all_phi.subrows(0, c.nrows()).subcols(range.start, range.len()));
-    let targets_of = |vs: &[usize], c: &Mat<f64>| product(c, Mat::<f64>::from_fn(c.nrows(), vs.len(), |p, r| rows[vs[r] * stride + p]).as_ref());
+    let targets_of = |vs: &[usize], c: &Mat<f64>| product(c, Mat::<f64>::from_fn(c.nrows(), vs.len(), |p, r| from[vs[r] * stride + p]).as_ref());
     let whole = sub.len() == n;
     // C is summed over two fixed halves of the subset, one per core (the same sums on one
     // core: the result does not depend on the number of cores); it was a third of a ZoomOut.
@@ -96,7 +116,7 @@ pub fn zoomout_with(zb: &ZoomBasis, adjacency: &(Vec<usize>, Vec<u32>), map: &mu
         let part = |r0: usize, part: &[usize], gather: &mut [f64]| -> Mat<f64> {
             for (r, &v) in part.iter().enumerate() {
                 let w = map[v];
-                gather[r * k..(r + 1) * k].copy_from_slice(&rows[w * stride..w * stride + k]);
+                gather[r * k..(r + 1) * k].copy_from_slice(&rows[w * dst_stride..w * dst_stride + k]);
             }
             let phit = MatRef::from_row_major_slice(&gather[..part.len() * k], part.len(), k);
             let mut c = Mat::<f64>::zeros(k, k);
@@ -110,7 +130,7 @@ pub fn zoomout_with(zb: &ZoomBasis, adjacency: &(Vec<usize>, Vec<u32>), map: &mu
         let moved = crate::parallel::chunks(sub.len(), |range| {
             let t = if whole { targets_in(range.clone(), &c) } else { targets_of(&sub[range.clone()], &c) };
             let starts: Vec<usize> = range.map(|r| map[sub[r]]).collect();
-            crate::spectral::kernels::dispatch(Descents { adjacency, rows, stride, targets: &t, starts: &starts })
+            crate::spectral::kernels::dispatch(Descents { adjacency, rows, stride: dst_stride, targets: &t, starts: &starts })
         });
         for (&v, w) in sub.iter().zip(moved.into_iter().flatten()) {
             map[v] = w;
@@ -118,7 +138,7 @@ pub fn zoomout_with(zb: &ZoomBasis, adjacency: &(Vec<usize>, Vec<u32>), map: &mu
         if k >= kmax && sub.len() < n {
             // Last iteration on a large mesh: every other vertex, breadth-first from the subset.
             let t = targets_in(0..n, &c);
-            super::breadth_first(adjacency, sub, |v, u| {
+            super::breadth_first(src_adjacency, sub, |v, u| {
                 let target = t.col_as_slice(u);
                 let start = if dist(map[v], target) < dist(map[u], target) { map[v] } else { map[u] };
                 map[u] = super::greedy_descent(adjacency, start, |w| dist(w, target)).0;
