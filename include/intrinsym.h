@@ -7,7 +7,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #define SYM_VERSION_MAJOR 0
-#define SYM_VERSION_MINOR 3
+#define SYM_VERSION_MINOR 4
 #define SYM_VERSION_PATCH 0
 
 
@@ -22,6 +22,15 @@
  * a written coordinate (about 10⁻⁷ of the coordinates' magnitude is the largest error).
  */
 #define WELD_REL 1e-6
+
+/**
+ * [`ComponentPolicy::Each`] keeps the components of at least this fraction of the largest
+ * component's area. A component of 1% of the area has eigenvalues about 100 times the main
+ * surface's (λ scales as 1/area): its first eigenpairs lie beyond the main surface's 100, so
+ * its descriptors and maps would rest on a handful of modes; such parts are debris of a scan
+ * or loose fragments far more often than a part whose symmetry a user wants.
+ */
+#define MIN_COMPONENT_SHARE 0.01
 
 /**
  * At most this many good pairs vote (those with the closest signatures): 12,000 pairs cost two
@@ -188,6 +197,16 @@ typedef struct {
    * kept; added in 0.2).
    */
   double fixed;
+  /**
+   * The connected component the map goes from (0 = the largest processed one; added in
+   * 0.4: written only when `struct_size` covers it).
+   */
+  uint32_t source_component;
+  /**
+   * The component it goes to: the same for a symmetry of one component, another for a map
+   * between congruent components (the map then sends each onto the other; added in 0.4).
+   */
+  uint32_t target_component;
 } sym_symmetry;
 
 /**
@@ -216,7 +235,7 @@ typedef struct {
    */
   size_t components;
   /**
-   * Vertices of the components that were not processed (only the largest is).
+   * Vertices of the components that were not processed (smaller than 1% of the largest).
    */
   size_t ignored_component_vertices;
   /**
@@ -235,6 +254,11 @@ typedef struct {
    * Triangles that welding collapsed (dropped).
    */
   size_t collapsed_triangles;
+  /**
+   * Components processed, each on its own (added in 0.4: written only when `struct_size`
+   * covers it).
+   */
+  size_t kept_components;
 } sym_mesh_report;
 
 #ifdef __cplusplus
@@ -317,7 +341,7 @@ sym_status sym_params_set_allow_non_manifold(sym_params *params, int value);
 sym_status sym_params_set_weld(sym_params *params, int value);
 
 /**
- * Nonzero: refuse meshes with several connected components (default 0: use the largest). Returns `SYM_STATUS_INVALID_ARGUMENT` (settings unchanged) outside the range.
+ * Nonzero: refuse meshes with several connected components (default 0: process each component of at least 1% of the largest one's area, and map congruent components onto each other). Returns `SYM_STATUS_INVALID_ARGUMENT` (settings unchanged) outside the range.
  */
 sym_status sym_params_set_reject_disconnected(sym_params *params,
                                               int value);

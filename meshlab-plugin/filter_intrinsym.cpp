@@ -188,10 +188,10 @@ bool FilterIntrinsymPlugin::applyFilter(QAction *, MeshDocument &md, const RichP
         info.struct_size = sizeof info;
         if (sym_get_mesh_report(result, &info) == SYM_STATUS_OK) {
             Log("Mesh: %d vertices, %d triangles; %d coincident vertices welded (%d triangles collapsed); %d unreferenced vertices ignored; "
-                "%d components, %d vertices of the smaller ones ignored (left grey, quality 0); %d non-manifold edges; %d zero-area triangles",
+                "%d components, %d processed each on its own, %d vertices of smaller ones ignored (left grey, quality 0); %d non-manifold edges; %d zero-area triangles",
                 int(info.input_vertices), int(info.input_triangles), int(info.welded_vertices), int(info.collapsed_triangles),
-                int(info.isolated_vertices), int(info.components), int(info.ignored_component_vertices), int(info.non_manifold_edges),
-                int(info.degenerate_triangles));
+                int(info.isolated_vertices), int(info.components), int(info.kept_components), int(info.ignored_component_vertices),
+                int(info.non_manifold_edges), int(info.degenerate_triangles));
         }
         const int dimension = sym_continuous_dimension(result);
         if (dimension > 0)
@@ -204,10 +204,10 @@ bool FilterIntrinsymPlugin::applyFilter(QAction *, MeshDocument &md, const RichP
         syms[i] = sym_symmetry{};
         syms[i].struct_size = sizeof(sym_symmetry);
         sym_get_map(result, i, &syms[i]);
-        Log("Symmetry #%d: %s, orientation-%s, score %.3f, group %u, order %u, complexity %.3f, region %d of %d vertices",
+        Log("Symmetry #%d: %s, orientation-%s, score %.3f, group %u, order %u, complexity %.3f, region %d of %d vertices, component %u -> %u",
             int(i), syms[i].kind == SYM_KIND_GLOBAL ? "global" : "partial",
             syms[i].reversal > 0.5 ? "reversing" : "preserving", syms[i].score, syms[i].group, syms[i].order,
-            syms[i].complexity, int(syms[i].region_size), int(verts.size()));
+            syms[i].complexity, int(syms[i].region_size), int(verts.size()), syms[i].source_component, syms[i].target_component);
     }
     if (count == 0) Log("No intrinsic symmetry found.");
 

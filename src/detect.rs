@@ -19,6 +19,13 @@
 //! in [`Detection::continuous`] and reports one map per orientation type, not the cap's worth
 //! of samples of the family.
 //!
+//! A mesh of several connected components ([`crate::mesh::ComponentPolicy::Each`]) is
+//! detected component by component, each on its own unit-area copy (an eigenbasis of a
+//! disconnected surface mixes the components' spectra); then congruent components are mapped
+//! onto each other ([`crate::maps::congruent`]) and each such map is reported as one symmetry
+//! swapping the two ([`Symmetry::components`]). Ranking across components: the judge's score
+//! times the share of the area the symmetry covers.
+//!
 //! Why not the paper's selector (measured over `../shared/data`, 116 shapes, best-of acc@0.05;
 //! `docs/accuracy.md`): complexity preferred half-identities, whose functional maps are more
 //! diagonal than the true mirror's; merging by agreement alone let a human's front↔back
@@ -169,6 +176,22 @@ pub struct Symmetry {
     /// The judge's verdict ([`crate::judge`]): orientation reversal, fixed fraction, coverage
     /// and the score symmetries are ranked by.
     pub verdict: Verdict,
+    /// The connected components the map goes from and to ([`Detection::components`]): the
+    /// same for a symmetry of one component, two for a map between congruent components
+    /// (then `map` sends each onto the other).
+    pub components: [usize; 2],
+}
+
+/// One connected component that was processed.
+#[derive(Clone, Debug)]
+#[non_exhaustive]
+pub struct Component {
+    /// Its vertices (processed, welded ones not counted).
+    pub vertices: usize,
+    /// Its share of the processed surface's area.
+    pub area: f64,
+    /// Its continuous family of isometries, if it has one.
+    pub continuous: Continuous,
 }
 
 /// Seconds per stage.
@@ -202,12 +225,42 @@ pub struct Timings {
     pub maps_proxy: f64,
     /// Of which: lifting the proxy's maps to every vertex (0 without a proxy).
     pub maps_lift: f64,
+    /// Maps between congruent components (0 for one component).
+    pub congruence: f64,
     /// Complexity, order, distortion.
     pub characterize: f64,
     /// Grouping.
     pub cluster: f64,
     /// Everything.
     pub total: f64,
+}
+
+impl Timings {
+    /// Adds `other`'s seconds to these, stage by stage (components detected one after another).
+    fn accumulate(&mut self, other: &Timings) {
+        let pairs = [
+            (&mut self.spectral, other.spectral),
+            (&mut self.descriptors, other.descriptors),
+            (&mut self.distance, other.distance),
+            (&mut self.sampling, other.sampling),
+            (&mut self.voting, other.voting),
+            (&mut self.maps, other.maps),
+            (&mut self.maps_profile, other.maps_profile),
+            (&mut self.maps_fmap, other.maps_fmap),
+            (&mut self.maps_refine, other.maps_refine),
+            (&mut self.maps_polish, other.maps_polish),
+            (&mut self.maps_compose, other.maps_compose),
+            (&mut self.maps_proxy, other.maps_proxy),
+            (&mut self.maps_lift, other.maps_lift),
+            (&mut self.congruence, other.congruence),
+            (&mut self.characterize, other.characterize),
+            (&mut self.cluster, other.cluster),
+            (&mut self.total, other.total),
+        ];
+        for (mine, theirs) in pairs {
+            *mine += theirs;
+        }
+    }
 }
 
 /// The result of [`detect`].
@@ -229,8 +282,12 @@ pub struct Detection {
     /// The continuous family of isometries, if the shape has one (a sphere: dimension 3; a
     /// surface of revolution: 1). When it has, `symmetries` holds only the strongest map of
     /// each orientation type (a sample of the family and of its mirror-image coset), not the
-    /// cap's worth of near-copies voting finds.
+    /// cap's worth of near-copies voting finds. With several components: the largest one's
+    /// (each one's is in `components`).
     pub continuous: Continuous,
+    /// The processed connected components, largest area first: each is detected on its own,
+    /// and congruent ones are mapped onto each other (`crate::maps::congruent`).
+    pub components: Vec<Component>,
 }
 
 impl Detection {
@@ -289,11 +346,175 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
     };
     // Centred, unit area: results do not depend on units or position (`Mesh::normalized`).
     let (mesh, _) = mesh.normalized();
-    crate::parallel::on_pool(&mut flagged, |relay| pipeline(&mesh, params, relay))
+    let parts = mesh.components();
+    if parts.len() == 1 {
+        return crate::parallel::on_pool(&mut flagged, |relay| pipeline(&mesh, params, relay).map(|(d, _)| d));
+    }
+    crate::parallel::on_pool(&mut flagged, |relay| several(&mesh, &parts, params, relay))
+}
+
+/// What a component's pipeline computed that the congruence stage reuses.
+struct Spectral {
+    basis: Eigenbasis,
+    desc: Mat<f64>,
+    emb: crate::distance::BiharmonicEmbedding,
+}
+
+/// [`detect`] on a mesh of several components (`parts`, largest first, in the indices of the
+/// input like `whole`): each is detected on its own unit-area copy, then every congruent pair
+/// is mapped (`maps::congruent`) and reported as one symmetry that swaps the two (an involution,
+/// defined on both). A component's symmetries are global only if the component holds
+/// `maps.global_fraction` of the area; all symmetries are ranked by the judge's score times
+/// the area share of the components they map (a swap is judged on the whole mesh, so its
+/// coverage already is that share).
+fn several(whole: &Mesh, parts: &[Mesh], params: &Params, progress: &mut dyn FnMut(f64) -> bool) -> Result<Detection, Error> {
+    let t_all = Instant::now();
+    let total_area = whole.area();
+    let total_vertices: usize = parts.iter().map(Mesh::num_vertices).sum();
+    // Phase 1: each component, its share of the progress by vertex count (the eigensolve
+    // dominates and grows with it).
+    let mut done = 0;
+    let mut detections = Vec::with_capacity(parts.len());
+    let mut units = Vec::with_capacity(parts.len());
+    for part in parts {
+        let (lo, hi) = (0.9 * done as f64 / total_vertices as f64, 0.9 * (done + part.num_vertices()) as f64 / total_vertices as f64);
+        done += part.num_vertices();
+        let (unit, _) = part.normalized();
+        detections.push(pipeline(&unit, params, &mut |f| progress(lo + (hi - lo) * f))?);
+        units.push(unit);
+    }
+    // Phase 2: maps between congruent components.
+    let t = Instant::now();
+    let shares: Vec<f64> = parts.iter().map(|p| p.area() / total_area).collect();
+    let views: Vec<maps::congruent::Part<'_>> = units
+        .iter()
+        .zip(&detections)
+        .zip(parts)
+        .map(|((unit, (_, sp)), part)| maps::congruent::Part { mesh: unit, basis: &sp.basis, desc: &sp.desc, emb: &sp.emb, area: part.area() })
+        .collect();
+    let cparams = maps::congruent::CongruentParams::default();
+    let pairs: Vec<(usize, usize)> = (0..parts.len()).flat_map(|a| (a + 1..parts.len()).map(move |b| (a, b))).filter(|&(a, b)| maps::congruent::congruent(&views[a], &views[b], &cparams)).collect();
+    let mut swaps = Vec::new();
+    for (i, &(a, b)) in pairs.iter().enumerate() {
+        if !progress(0.9 + 0.09 * i as f64 / pairs.len() as f64) {
+            return Err(Error::Cancelled { stage: "congruent components" });
+        }
+        if let Some(m) = maps::congruent::map_between(&views[a], &views[b], &params.maps, &cparams, params.max_distortion) {
+            swaps.push((a, b, m));
+        }
+    }
+    let congruence = t.elapsed().as_secs_f64();
+    // Phase 3: one report.
+    let judge = {
+        let oriented = whole.oriented_triangles();
+        Judge::new(&whole.vertices, whole.vertex_normals(&oriented), &whole.adjacency(), total_area.sqrt(), &params.judge)
+    };
+    let mut ranked: Vec<(f64, Symmetry)> = Vec::new();
+    for (c, (det, _)) in detections.iter().enumerate() {
+        for s in &det.symmetries {
+            let mut s = s.clone();
+            s.components = [c, c];
+            if shares[c] < params.maps.global_fraction {
+                s.kind = Kind::Partial;
+            }
+            ranked.push((s.verdict.score * shares[c], s));
+        }
+    }
+    for (a, b, m) in &swaps {
+        let s = swap(whole, (&parts[*a], &parts[*b]), (&units[*a], &units[*b]), (&detections[*a].1, &detections[*b].1), [*a, *b], m, &judge, params, shares[*a] + shares[*b]);
+        ranked.push((s.verdict.score, s));
+    }
+    ranked.sort_by(|x, y| y.0.total_cmp(&x.0));
+    let mut symmetries: Vec<Symmetry> = ranked.into_iter().map(|(_, s)| s).take(params.max_symmetries).collect();
+    let n = whole.num_vertices();
+    let features: Vec<Vec<f64>> = symmetries.iter().map(|s| vec![s.complexity, if s.order > 0 { 1.0 / s.order as f64 } else { 0.0 }, s.region_size as f64 / n as f64]).collect();
+    for (s, g) in symmetries.iter_mut().zip(cluster::cluster(&features, params.groups)) {
+        s.group = g;
+    }
+    let mut timings = Timings::default();
+    for (det, _) in &detections {
+        timings.accumulate(&det.timings);
+    }
+    timings.congruence = congruence;
+    timings.total = t_all.elapsed().as_secs_f64();
+    if !progress(1.0) {
+        return Err(Error::Cancelled { stage: "report" });
+    }
+    Ok(Detection {
+        vertices: whole.info.input_vertices,
+        faces: whole.info.input_triangles,
+        symmetries,
+        timings,
+        candidates: detections.iter().map(|(d, _)| d.candidates).sum(),
+        mesh: whole.info.clone(),
+        continuous: detections[0].0.continuous.clone(),
+        components: detections.iter().zip(&shares).map(|((d, _), &area)| Component { vertices: d.components[0].vertices, area, continuous: d.continuous.clone() }).collect(),
+    })
+}
+
+/// The symmetry of the whole mesh that swaps congruent components `a` and `b` by `m`: in input
+/// indices, judged on the whole mesh, with the functional map of its `a → b` half.
+#[allow(clippy::too_many_arguments)]
+fn swap(
+    whole: &Mesh,
+    parts: (&Mesh, &Mesh),
+    units: (&Mesh, &Mesh),
+    spectral: (&Spectral, &Spectral),
+    components: [usize; 2],
+    m: &maps::congruent::Between,
+    judge: &Judge,
+    params: &Params,
+    share: f64,
+) -> Symmetry {
+    let inputs = whole.info.input_vertices;
+    let mut map = vec![-1i64; inputs];
+    for (v, &w) in m.forward.iter().enumerate() {
+        map[parts.0.input_index[v] as usize] = parts.1.input_index[w] as i64;
+    }
+    for (v, &w) in m.backward.iter().enumerate() {
+        map[parts.1.input_index[v] as usize] = parts.0.input_index[w] as i64;
+    }
+    // The same map in the whole mesh's vertex indices, for its judge.
+    let mut local = vec![u32::MAX; inputs];
+    for (i, &v) in whole.input_index.iter().enumerate() {
+        local[v as usize] = i as u32;
+    }
+    let on_whole: Vec<i64> = whole.input_index.iter().map(|&v| map[v as usize]).map(|w| if w < 0 { -1 } else { local[w as usize] as i64 }).collect();
+    let verdict = judge.judge(&on_whole, m.distortion, params.max_distortion);
+    for &(v, kept) in parts.0.welded.iter().chain(&parts.1.welded) {
+        map[v as usize] = map[kept as usize];
+    }
+    // Confidence: how far below the distortion limit the map stays, on every mapped vertex.
+    let level = (1.0 - m.distortion / params.max_distortion).clamp(0.0, 1.0);
+    let confidence: Vec<f64> = map.iter().map(|&w| if w >= 0 { level } else { 0.0 }).collect();
+    // Functional map of the a → b half: C = Φ_aᵀ M_a Φ_b[T].
+    let k = params.maps.fmap_size.min(spectral.0.basis.k()).min(spectral.1.basis.k());
+    let (ba, bb) = (&spectral.0.basis, &spectral.1.basis);
+    let fmap = Mat::<f64>::from_fn(k, k, |i, j| m.forward.iter().enumerate().map(|(v, &w)| ba.mass[v] * ba.evecs[(v, i)] * bb.evecs[(w, j)]).sum());
+    let samples = farthest_point(&spectral.0.emb, params.samples.min(units.0.num_vertices()), params.seed).vertices;
+    let to_input = |v: usize| parts.0.input_index[v] as usize;
+    let support_pairs: Vec<(usize, usize)> = samples.iter().map(|&v| (to_input(v), parts.1.input_index[m.forward[v]] as usize)).collect();
+    let region_size = m.forward.len() + m.backward.len();
+    Symmetry {
+        source: support_pairs[0].0,
+        target: support_pairs[0].1,
+        support_pairs,
+        kind: if share >= params.maps.global_fraction { Kind::Global } else { Kind::Partial },
+        order: 2,
+        region_size,
+        map,
+        confidence,
+        complexity: characterize::complexity(&fmap, params.complexity_width),
+        fmap,
+        group: 0,
+        distortion: m.distortion,
+        verdict,
+        components,
+    }
 }
 
 /// [`detect`] on the current thread.
-fn pipeline(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool) -> Result<Detection, Error> {
+fn pipeline(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool) -> Result<(Detection, Spectral), Error> {
     let t_all = Instant::now();
     let mut timings = Timings::default();
     let cancelled = |stage: &'static str| Error::Cancelled { stage };
@@ -304,24 +525,26 @@ fn pipeline(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool)
     eigen.seed = params.seed;
     // At least 3 pairs (WKS needs an energy range), at most one per vertex.
     eigen.k = eigen.k.clamp(3.min(n), n);
-    let basis = Eigenbasis::compute_with_progress(mesh, &eigen, &mut |f| progress(0.6 * f))?;
+    let basis_owned = Eigenbasis::compute_with_progress(mesh, &eigen, &mut |f| progress(0.6 * f))?;
+    let basis = &basis_owned;
     timings.spectral = t.elapsed().as_secs_f64();
 
     let t = Instant::now();
-    let desc = wks(&basis, &params.wks);
+    let desc = wks(basis, &params.wks);
     timings.descriptors = t.elapsed().as_secs_f64();
     let t = Instant::now();
-    let emb = biharmonic(&basis);
+    let emb_owned = biharmonic(basis);
+    let emb = &emb_owned;
     timings.distance = t.elapsed().as_secs_f64();
     let t = Instant::now();
-    let samples = farthest_point(&emb, params.samples, params.seed);
+    let samples = farthest_point(emb, params.samples, params.seed);
     timings.sampling = t.elapsed().as_secs_f64();
     if !progress(0.62) {
         return Err(cancelled("descriptors"));
     }
 
     let t = Instant::now();
-    let (candidates, vinfo, _sample_dist) = vote(&emb, &desc, &samples, &params.voting);
+    let (candidates, vinfo, _sample_dist) = vote(emb, &desc, &samples, &params.voting);
     timings.voting = t.elapsed().as_secs_f64();
     if !progress(0.65) {
         return Err(cancelled("voting"));
@@ -331,14 +554,14 @@ fn pipeline(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool)
     // Anchor candidates of the polish: voting's samples, farthest-point sampling continued.
     let polish_anchors = {
         let mut more = samples.clone();
-        more.extend(&emb, params.maps.polish_samples.max(params.samples));
+        more.extend(emb, params.maps.polish_samples.max(params.samples));
         more.vertices
     };
     debug_assert!(polish_anchors.starts_with(&samples.vertices));
     let polish_sampling = t.elapsed().as_secs_f64();
     // On a large mesh the maps are made on a proxy of `proxy_vertices` vertices and lifted
     // (see `maps::proxy`); its first vertices are the samples and the polish's anchors.
-    let proxy = maps::proxy::wanted(n, &params.maps).then(|| Proxy::new(mesh, &basis, &emb, &desc, &polish_anchors, params.maps.proxy_vertices));
+    let proxy = maps::proxy::wanted(n, &params.maps).then(|| Proxy::new(mesh, basis, emb, &desc, &polish_anchors, params.maps.proxy_vertices));
     timings.maps_proxy = t.elapsed().as_secs_f64() - polish_sampling;
     let t_stage = Instant::now();
     // The maps stage works in the vertex indices of its domain: the proxy's, whose first
@@ -349,10 +572,10 @@ fn pipeline(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool)
     };
     let probes = &probes[..];
     // The mesh's embedding and basis, for judging the lifted maps after the maps stage.
-    let (fine_emb, fine_basis) = (&emb, &basis);
+    let (fine_emb, fine_basis) = (emb, basis);
     let (emb, basis, mut ctx) = match &proxy {
         Some(p) => (&p.emb, &p.basis, Context::on_graph(&p.positions, p.adjacency.clone(), &p.emb, &p.wks, vinfo.diameter, &params.maps)),
-        None => (&emb, &basis, Context::new(mesh, &emb, &desc, vinfo.diameter, &params.maps)),
+        None => (emb, basis, Context::new(mesh, emb, &desc, vinfo.diameter, &params.maps)),
     };
     ctx.basis = Some(basis);
     // The judge on the maps' domain: the mesh, or the proxy graph with the mesh's normals at
@@ -689,15 +912,17 @@ fn pipeline(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool)
     if !progress(1.0) {
         return Err(cancelled("report"));
     }
-    Ok(Detection {
+    let detection = Detection {
         vertices: mesh.info.input_vertices,
         faces: mesh.info.input_triangles,
         symmetries,
         timings,
         candidates: candidates.len(),
         mesh: mesh.info.clone(),
+        components: vec![Component { vertices: n, area: 1.0, continuous: continuous.clone() }],
         continuous,
-    })
+    };
+    Ok((detection, Spectral { basis: basis_owned, desc, emb: emb_owned }))
 }
 
 /// The report phase: the verdicts of `mesh_judge`, the judge on the mesh (every map is now
@@ -756,6 +981,7 @@ fn report(mesh: &Mesh, mesh_judge: &Judge, mut found: Vec<Found>, emb: &crate::d
                 group: 0,
                 distortion: f.distortion,
                 verdict: f.verdict,
+                components: [0, 0],
             }
         })
         .collect();

@@ -75,9 +75,13 @@ enum Command {
         /// Do not weld coincident vertices.
         #[arg(long)]
         no_weld: bool,
-        /// Refuse meshes with several connected components instead of using the largest.
-        #[arg(long)]
+        /// Refuse meshes with several connected components instead of processing each.
+        #[arg(long, conflicts_with = "largest_component")]
         reject_disconnected: bool,
+        /// Process only the largest connected component (by area) instead of each one of at
+        /// least 1% of its area.
+        #[arg(long)]
+        largest_component: bool,
     },
     /// Compute the k lowest Laplace–Beltrami eigenpairs of a mesh (OFF, PLY or OBJ).
     Spectrum {
@@ -152,6 +156,7 @@ fn run(cli: Cli) -> Result<(), intrinsym::Error> {
             allow_non_manifold: _,
             no_weld,
             reject_disconnected,
+            largest_component,
         } => {
             let raw = read_mesh(&input)?;
             let mut mp = MeshParams::default();
@@ -159,6 +164,9 @@ fn run(cli: Cli) -> Result<(), intrinsym::Error> {
             mp.weld = !no_weld;
             if reject_disconnected {
                 mp.components = ComponentPolicy::Reject;
+            }
+            if largest_component {
+                mp.components = ComponentPolicy::Largest;
             }
             let mesh = Mesh::new(raw.vertices.clone(), raw.triangles.clone(), &mp)?;
             let mut params = Params::default();
@@ -191,7 +199,7 @@ fn run(cli: Cli) -> Result<(), intrinsym::Error> {
                     "  note: {} isolated vertices and {} vertices of {} other components ignored; {} zero-area triangles kept; {} non-manifold edges",
                     info.isolated_vertices,
                     info.ignored_component_vertices,
-                    info.components.saturating_sub(1),
+                    info.components.saturating_sub(info.kept_components),
                     info.degenerate_triangles,
                     info.non_manifold_edges
                 );
@@ -214,6 +222,14 @@ fn run(cli: Cli) -> Result<(), intrinsym::Error> {
                 t.maps,
                 t.characterize + t.cluster
             );
+            if det.components.len() > 1 {
+                println!("  {} components processed, each on its own ({:.2} s mapping congruent ones onto each other):", det.components.len(), t.congruence);
+                for (i, c) in det.components.iter().enumerate() {
+                    let own = det.symmetries.iter().filter(|s| s.components == [i, i]).count();
+                    let swaps = det.symmetries.iter().filter(|s| s.components[0] != s.components[1] && s.components.contains(&i)).count();
+                    println!("    component {i}: {} vertices, {:.1}% of the area, {own} symmetries of its own, {swaps} maps onto a congruent component", c.vertices, 100.0 * c.area);
+                }
+            }
             if det.continuous.dimension > 0 {
                 println!(
                     "  a continuous symmetry: a {}-parameter family of isometries (Killing-field residual {:.1e}); one map of each orientation type is listed",
@@ -229,8 +245,13 @@ fn run(cli: Cli) -> Result<(), intrinsym::Error> {
                     (o, _) => format!("order {o}"),
                 };
                 let orientation = s.verdict.orientation();
+                let place = match (det.components.len(), s.components) {
+                    (1, _) => String::new(),
+                    (_, [a, b]) if a == b => format!("  component {a}"),
+                    (_, [a, b]) => format!("  components {a} <-> {b}"),
+                };
                 println!(
-                    "  #{i}: {:<7} group {}  {order:<26} {orientation:<10} score {:.3}  region {:>6} vertices  complexity {:.3}  distortion {:.4}  seed {} -> {}",
+                    "  #{i}: {:<7} group {}  {order:<26} {orientation:<10} score {:.3}  region {:>6} vertices  complexity {:.3}  distortion {:.4}  seed {} -> {}{place}",
                     s.kind.as_str(),
                     s.group,
                     s.verdict.score,
@@ -269,9 +290,8 @@ fn run(cli: Cli) -> Result<(), intrinsym::Error> {
             let t = Instant::now();
             let raw = read_mesh(&input)?;
             let mut mp = MeshParams::default();
-            if reject_disconnected {
-                mp.components = ComponentPolicy::Reject;
-            }
+            // The spectrum of one connected surface: the largest component's.
+            mp.components = if reject_disconnected { ComponentPolicy::Reject } else { ComponentPolicy::Largest };
             let mesh = Mesh::new(raw.vertices, raw.triangles, &mp)?;
             let read_seconds = t.elapsed().as_secs_f64();
             let mut params = EigenParams::default();

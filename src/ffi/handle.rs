@@ -87,6 +87,12 @@ pub struct sym_symmetry {
     /// Fraction of the surface where the map is locally the identity (points stay, orientation
     /// kept; added in 0.2).
     pub fixed: f64,
+    /// The connected component the map goes from (0 = the largest processed one; added in
+    /// 0.4: written only when `struct_size` covers it).
+    pub source_component: u32,
+    /// The component it goes to: the same for a symmetry of one component, another for a map
+    /// between congruent components (the map then sends each onto the other; added in 0.4).
+    pub target_component: u32,
 }
 
 /// What validating the mesh found and decided (added in 0.3). Set `struct_size =
@@ -104,7 +110,7 @@ pub struct sym_mesh_report {
     pub isolated_vertices: usize,
     /// Connected components of the input.
     pub components: usize,
-    /// Vertices of the components that were not processed (only the largest is).
+    /// Vertices of the components that were not processed (smaller than 1% of the largest).
     pub ignored_component_vertices: usize,
     /// Edges shared by more than two triangles (accepted).
     pub non_manifold_edges: usize,
@@ -114,6 +120,9 @@ pub struct sym_mesh_report {
     pub welded_vertices: usize,
     /// Triangles that welding collapsed (dropped).
     pub collapsed_triangles: usize,
+    /// Components processed, each on its own (added in 0.4: written only when `struct_size`
+    /// covers it).
+    pub kept_components: usize,
 }
 
 /// Progress callback: `fraction` in [0, 1]; return 0 to cancel, nonzero to continue.
@@ -333,10 +342,10 @@ pub extern "C" fn sym_params_set_weld(params: *mut sym_params, value: c_int) -> 
     set(params, "sym_params_set_weld", "any", true, value, |p| p.mesh.weld = value != 0)
 }
 
-/// Nonzero: refuse meshes with several connected components (default 0: use the largest). Returns `SYM_STATUS_INVALID_ARGUMENT` (settings unchanged) outside the range.
+/// Nonzero: refuse meshes with several connected components (default 0: process each component of at least 1% of the largest one's area, and map congruent components onto each other). Returns `SYM_STATUS_INVALID_ARGUMENT` (settings unchanged) outside the range.
 #[no_mangle]
 pub extern "C" fn sym_params_set_reject_disconnected(params: *mut sym_params, value: c_int) -> sym_status {
-    set(params, "sym_params_set_reject_disconnected", "any", true, value, |p| p.mesh.components = if value != 0 { ComponentPolicy::Reject } else { ComponentPolicy::Largest })
+    set(params, "sym_params_set_reject_disconnected", "any", true, value, |p| p.mesh.components = if value != 0 { ComponentPolicy::Reject } else { ComponentPolicy::Each })
 }
 
 /// Detects the intrinsic symmetries of a triangle mesh.
@@ -463,6 +472,8 @@ pub unsafe extern "C" fn sym_get_map(result: *const sym_result, index: usize, ou
             score: s.verdict.score,
             reversal: s.verdict.reversal,
             fixed: s.verdict.fixed,
+            source_component: s.components[0] as u32,
+            target_component: s.components[1] as u32,
         };
         // SAFETY: `out` has `caller_size` writable bytes (caller contract).
         unsafe { write_versioned(out, &value, caller_size) };
@@ -508,6 +519,7 @@ pub unsafe extern "C" fn sym_get_mesh_report(result: *const sym_result, out: *mu
             degenerate_triangles: i.degenerate_triangles,
             welded_vertices: i.welded_vertices,
             collapsed_triangles: i.collapsed_triangles,
+            kept_components: i.kept_components,
         };
         // SAFETY: `out` has `caller_size` writable bytes (caller contract).
         unsafe { write_versioned(out, &value, caller_size) };

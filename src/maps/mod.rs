@@ -26,6 +26,7 @@
 
 use faer::Mat;
 
+pub mod congruent;
 pub mod geodesic;
 pub mod orientation;
 pub mod proxy;

@@ -17,7 +17,7 @@
 //! | zero-area (collinear or collapsed) triangles | **kept** and counted in [`MeshInfo::degenerate_triangles`]: the Laplacian is built on intrinsically mollified edge lengths (Sharp & Crane 2020), so they get a tiny positive area and finite cotangents; dropping them would punch holes |
 //! | every triangle degenerate (zero total area) | error [`MeshError::Degenerate`] |
 //! | vertices used by no triangle | **ignored** (not part of the computation; results mark them "no image", confidence 0), counted in [`MeshInfo::isolated_vertices`] |
-//! | several connected components | by default the **largest** (by area) is processed and the others are reported as ignored vertices ([`ComponentPolicy::Largest`]); [`ComponentPolicy::Reject`] makes it error [`MeshError::Disconnected`]. Intrinsic symmetry is defined per connected surface: a map cannot be continuous across components, and the spectrum of a disconnected surface mixes the components' spectra |
+//! | several connected components | by default **every component of at least [`MIN_COMPONENT_SHARE`] of the largest one's area** is kept ([`ComponentPolicy::Each`]; smaller ones are reported as ignored vertices); detection processes each kept component on its own ([`Mesh::components`]) and maps congruent components onto each other (`crate::maps::congruent`). [`ComponentPolicy::Largest`] keeps the largest only; [`ComponentPolicy::Reject`] makes it error [`MeshError::Disconnected`]. Intrinsic symmetry is defined per connected surface: the spectrum of a disconnected surface mixes the components' spectra, so no eigenbasis is ever computed on several components at once |
 //!
 //! Polygon faces in files are fan-triangulated by the readers in [`io`]; vertex indices in
 //! every result are those of the input arrays ([`Mesh::input_index`] maps back).
@@ -32,8 +32,11 @@ use std::fmt;
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 #[non_exhaustive]
 pub enum ComponentPolicy {
-    /// Process the component with the largest surface area; ignore the others.
+    /// Keep every component of at least [`MIN_COMPONENT_SHARE`] of the largest one's area;
+    /// ignore smaller ones (scanning debris, loose fragments).
     #[default]
+    Each,
+    /// Keep the component with the largest surface area; ignore the others.
     Largest,
     /// Refuse the mesh with [`MeshError::Disconnected`].
     Reject,
@@ -43,7 +46,8 @@ pub enum ComponentPolicy {
 #[derive(Clone, Debug)]
 #[non_exhaustive]
 pub struct MeshParams {
-    /// Several connected components: process the largest (default) or reject.
+    /// Several connected components: keep each of meaningful size (default), the largest, or
+    /// reject the mesh.
     pub components: ComponentPolicy,
     /// Accept edges shared by more than two triangles (default: accept; issue 16, item 2). The
     /// Laplacian is assembled triangle by triangle from intrinsic edge lengths, each triangle
@@ -75,6 +79,13 @@ impl Default for MeshParams {
 /// a written coordinate (about 10⁻⁷ of the coordinates' magnitude is the largest error).
 pub const WELD_REL: f64 = 1e-6;
 
+/// [`ComponentPolicy::Each`] keeps the components of at least this fraction of the largest
+/// component's area. A component of 1% of the area has eigenvalues about 100 times the main
+/// surface's (λ scales as 1/area): its first eigenpairs lie beyond the main surface's 100, so
+/// its descriptors and maps would rest on a handful of modes; such parts are debris of a scan
+/// or loose fragments far more often than a part whose symmetry a user wants.
+pub const MIN_COMPONENT_SHARE: f64 = 0.01;
+
 /// Facts found while validating a mesh (warnings, not errors).
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 #[non_exhaustive]
@@ -89,6 +100,8 @@ pub struct MeshInfo {
     pub isolated_vertices: usize,
     /// Number of connected components in the input.
     pub components: usize,
+    /// Components kept for processing ([`ComponentPolicy`]).
+    pub kept_components: usize,
     /// Vertices of the components that were not processed (ignored).
     pub ignored_component_vertices: usize,
     /// Edges shared by more than two triangles (accepted unless `allow_non_manifold` is off).
@@ -195,7 +208,7 @@ impl fmt::Display for MeshError {
             ),
             MeshError::Disconnected { components } => write!(
                 f,
-                "mesh has {components} connected components (process the largest with ComponentPolicy::Largest)"
+                "mesh has {components} connected components (process each with ComponentPolicy::Each, or the largest with ComponentPolicy::Largest)"
             ),
         }
     }
@@ -203,7 +216,8 @@ impl fmt::Display for MeshError {
 
 impl std::error::Error for MeshError {}
 
-/// A validated triangle mesh: one connected, edge-manifold surface with finite coordinates.
+/// A validated triangle mesh with finite coordinates: one connected surface, or several
+/// ([`ComponentPolicy::Each`]; [`Mesh::components`] splits them).
 #[derive(Clone, Debug)]
 pub struct Mesh {
     /// `(n, 3)` positions of the processed vertices.
@@ -320,12 +334,19 @@ impl Mesh {
             .max_by(|x, y| x.1.total_cmp(&y.1).then(y.0.cmp(&x.0)))
             .map(|(r, _)| r)
             .expect("at least one triangle");
+        let largest = comp_area[&keep_root];
+        let root: Vec<usize> = (0..n).map(|i| uf.find(i)).collect();
+        let kept = |r: usize| match params.components {
+            ComponentPolicy::Each => comp_area.get(&r).is_some_and(|&a| a >= MIN_COMPONENT_SHARE * largest),
+            _ => r == keep_root,
+        };
+        let kept_components = comp_area.keys().filter(|&&r| kept(r)).count();
 
         let mut new_index = vec![u32::MAX; n];
         let mut input_index = Vec::new();
         let mut kept_vertices = Vec::new();
         for i in 0..n {
-            if used[i] && uf.find(i) == keep_root {
+            if used[i] && kept(root[i]) {
                 new_index[i] = input_index.len() as u32;
                 input_index.push(i as u32);
                 kept_vertices.push(vertices[i]);
@@ -334,7 +355,7 @@ impl Mesh {
         let mut kept_triangles = Vec::with_capacity(m);
         let mut kept_degenerate = 0;
         for (t, a) in triangles.iter().zip(&areas) {
-            if uf.find(t[0] as usize) == keep_root {
+            if kept(root[t[0] as usize]) {
                 kept_triangles.push([new_index[t[0] as usize], new_index[t[1] as usize], new_index[t[2] as usize]]);
                 if 2.0 * a <= DEGENERATE_REL * longest_edge_sq(&unit_vertices, t) {
                     kept_degenerate += 1;
@@ -355,6 +376,7 @@ impl Mesh {
                 degenerate_triangles: kept_degenerate,
                 isolated_vertices: isolated,
                 components,
+                kept_components,
                 ignored_component_vertices,
                 non_manifold_edges,
                 welded_vertices: welded.len(),
@@ -371,6 +393,69 @@ impl Mesh {
     /// Number of processed triangles.
     pub fn num_triangles(&self) -> usize {
         self.triangles.len()
+    }
+
+    /// The connected components of this mesh as meshes of their own, largest area first (ties
+    /// by their first vertex), each with [`Mesh::input_index`] and [`Mesh::welded`] still in the
+    /// indices of the input arrays and this mesh's [`MeshInfo`]. One component: a copy of this
+    /// mesh.
+    pub fn components(&self) -> Vec<Mesh> {
+        let n = self.num_vertices();
+        let mut uf = UnionFind::new(n);
+        for t in &self.triangles {
+            uf.union(t[0] as usize, t[1] as usize);
+            uf.union(t[0] as usize, t[2] as usize);
+        }
+        let root: Vec<usize> = (0..n).map(|v| uf.find(v)).collect();
+        // Roots in order of first vertex; the area of each.
+        let mut label = vec![usize::MAX; n];
+        let mut roots = Vec::new();
+        for v in 0..n {
+            if label[root[v]] == usize::MAX {
+                label[root[v]] = roots.len();
+                roots.push(root[v]);
+            }
+        }
+        if roots.len() <= 1 {
+            return vec![self.clone()];
+        }
+        let mut area = vec![0.0; roots.len()];
+        for t in &self.triangles {
+            area[label[root[t[0] as usize]]] += triangle_area(&self.vertices, t);
+        }
+        let mut order: Vec<usize> = (0..roots.len()).collect();
+        order.sort_by(|&a, &b| area[b].total_cmp(&area[a]).then(a.cmp(&b)));
+        // Where each input vertex went: (component, index in it).
+        let mut local = vec![(usize::MAX, u32::MAX); n];
+        let mut parts: Vec<Mesh> = order
+            .iter()
+            .map(|_| Mesh { vertices: Vec::new(), triangles: Vec::new(), input_index: Vec::new(), welded: Vec::new(), info: self.info.clone() })
+            .collect();
+        let rank: Vec<usize> = {
+            let mut r = vec![0; order.len()];
+            for (i, &c) in order.iter().enumerate() {
+                r[c] = i;
+            }
+            r
+        };
+        for v in 0..n {
+            let c = rank[label[root[v]]];
+            let part = &mut parts[c];
+            local[v] = (c, part.vertices.len() as u32);
+            part.vertices.push(self.vertices[v]);
+            part.input_index.push(self.input_index[v]);
+        }
+        for t in &self.triangles {
+            let c = local[t[0] as usize].0;
+            parts[c].triangles.push(t.map(|v| local[v as usize].1));
+        }
+        let component_of_input: std::collections::HashMap<u32, usize> = (0..n).map(|v| (self.input_index[v], local[v].0)).collect();
+        for &(v, kept) in &self.welded {
+            if let Some(&c) = component_of_input.get(&kept) {
+                parts[c].welded.push((v, kept));
+            }
+        }
+        parts
     }
 
     /// This mesh centred on its bounding box's centre and scaled to unit area, and the scale
@@ -906,7 +991,7 @@ mod tests {
     }
 
     #[test]
-    fn components_largest_or_reject() {
+    fn components_each_largest_or_reject() {
         let (v, t) = tet();
         // Second tetrahedron, twice as large, offset; its vertices come first in the input.
         let mut v2: Vec<[f64; 3]> = v.iter().map(|p| [2. * p[0] + 5., 2. * p[1], 2. * p[2]]).collect();
@@ -914,9 +999,25 @@ mod tests {
         let mut t2 = t.clone();
         t2.extend(t.iter().map(|f| f.map(|i| i + 4)));
         let m = Mesh::new(v2.clone(), t2.clone(), &MeshParams::default()).unwrap();
-        assert_eq!(m.info.components, 2);
-        assert_eq!(m.info.ignored_component_vertices, 4);
-        assert_eq!(m.input_index, vec![0, 1, 2, 3]);
+        assert_eq!((m.info.components, m.info.kept_components, m.info.ignored_component_vertices), (2, 2, 0));
+        let parts = m.components();
+        assert_eq!(parts.len(), 2);
+        // Largest first, input indices kept.
+        assert_eq!(parts[0].input_index, vec![0, 1, 2, 3]);
+        assert_eq!(parts[1].input_index, vec![4, 5, 6, 7]);
+        assert!((parts[0].area() / parts[1].area() - 4.0).abs() < 1e-12);
+        assert!(parts.iter().all(|p| p.triangles.iter().flatten().all(|&i| i < 4)));
+        let largest = Mesh::new(v2.clone(), t2.clone(), &MeshParams { components: ComponentPolicy::Largest, ..Default::default() }).unwrap();
+        assert_eq!((largest.info.kept_components, largest.info.ignored_component_vertices), (1, 4));
+        assert_eq!(largest.input_index, vec![0, 1, 2, 3]);
+        assert_eq!(largest.components().len(), 1);
+        // A component under MIN_COMPONENT_SHARE of the largest one's area is ignored.
+        let mut v3 = v2.clone();
+        for p in &mut v3[4..] {
+            *p = p.map(|x| 0.05 * x);
+        }
+        let m = Mesh::new(v3, t2.clone(), &MeshParams::default()).unwrap();
+        assert_eq!((m.info.kept_components, m.info.ignored_component_vertices, m.num_vertices()), (1, 4, 4));
         let reject = MeshParams { components: ComponentPolicy::Reject, ..Default::default() };
         assert_eq!(Mesh::new(v2, t2, &reject).unwrap_err(), MeshError::Disconnected { components: 2 });
     }

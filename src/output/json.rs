@@ -5,14 +5,16 @@
 //!   "params": { "eigenpairs", "samples", "seed", "wks_quantile", "eps", "accept", "polish", "proxy_vertices", "groups" },
 //!   "timings": { "spectral", "descriptors", "distance", "sampling", "voting", "maps",
 //!                "maps_proxy", "maps_profile", "maps_fmap", "maps_refine", "maps_polish", "maps_compose", "maps_lift",
-//!                "characterize", "cluster", "total" },           // seconds
+//!                "congruence", "characterize", "cluster", "total" },   // seconds
 //!   "continuous": { "dimension": d, "residuals": [floats] },   // d > 0: a continuous family
-//!   "mesh": { "isolated_vertices", "components", "ignored_component_vertices",
+//!   "components": [ { "vertices", "area", "continuous": { "dimension", "residuals" } } ],
+//!                                   // processed components, largest first; area: share
+//!   "mesh": { "isolated_vertices", "components", "kept_components", "ignored_component_vertices",
 //!             "non_manifold_edges", "degenerate_triangles", "welded_vertices", "collapsed_triangles" },
 //!   "symmetries": [ { "id", "kind": "global"|"partial", "group", "order", "complexity",
 //!                     "distortion", "score", "orientation": "reversing"|"preserving",
 //!                     "reversal", "fixed", "source", "target", "support_pairs": [[a, b], …],
-//!                     "region_size", "map": [n ints, −1 outside], "confidence": [n floats],
+//!                     "region_size", "components": [from, to], "map": [n ints, −1 outside], "confidence": [n floats],
 //!                     "fmap": [k_f² floats, row-major], "fmap_size": k_f } ] }
 //! ```
 //! Vertex indices are those of the input file.
@@ -46,6 +48,7 @@ pub fn to_json(det: &Detection, params: &Params) -> Value {
                 "target": s.target,
                 "support_pairs": s.support_pairs.iter().map(|&(a, b)| [a, b]).collect::<Vec<_>>(),
                 "region_size": s.region_size,
+                "components": s.components,
                 "map": s.map,
                 "confidence": s.confidence,
                 "fmap": fmap,
@@ -57,9 +60,15 @@ pub fn to_json(det: &Detection, params: &Params) -> Value {
         "vertices": det.vertices,
         "faces": det.faces,
         "continuous": { "dimension": det.continuous.dimension, "residuals": det.continuous.residuals },
+        "components": det.components.iter().map(|c| json!({
+            "vertices": c.vertices,
+            "area": c.area,
+            "continuous": { "dimension": c.continuous.dimension, "residuals": c.continuous.residuals },
+        })).collect::<Vec<_>>(),
         "mesh": {
             "isolated_vertices": det.mesh.isolated_vertices,
             "components": det.mesh.components,
+            "kept_components": det.mesh.kept_components,
             "ignored_component_vertices": det.mesh.ignored_component_vertices,
             "non_manifold_edges": det.mesh.non_manifold_edges,
             "degenerate_triangles": det.mesh.degenerate_triangles,
@@ -91,6 +100,7 @@ pub fn to_json(det: &Detection, params: &Params) -> Value {
             "maps_compose": t.maps_compose,
             "maps_proxy": t.maps_proxy,
             "maps_lift": t.maps_lift,
+            "congruence": t.congruence,
             "characterize": t.characterize,
             "cluster": t.cluster,
             "total": t.total,

@@ -445,6 +445,39 @@ pub fn star(arms: usize, level: u32) -> Creature {
     creature(level, [0.8, 0.35, 0.8], &limbs, 0.0, 0)
 }
 
+/// A creature with no symmetry: limbs of different lengths and thicknesses in directions no
+/// map exchanges (a "shoe": its only congruent partner is a copy or a mirror image).
+pub fn lopsided(level: u32) -> Creature {
+    let limb = |direction: [f64; 3], length: f64, cap: f64| Limb { direction, axis: direction, length, cap, bend: 0.0, bend_axis: [1.0, 0.0, 0.0] };
+    let limbs = [limb([0.8, -0.5, 0.3], 1.2, 0.35), limb([-0.3, -0.7, 0.65], 0.7, 0.3), limb([0.1, 0.9, -0.4], 0.45, 0.5), limb([-0.9, 0.1, -0.45], 0.9, 0.22)];
+    creature(level, [0.45, 0.6, 1.0], &limbs, 0.0, 0)
+}
+
+/// Two meshes side by side along x as one mesh of two components: `b` placed `gap` bounding-box
+/// widths of `a` to the right of `a`, mirrored in x when `mirrored` (a pair of shoes; its
+/// triangles turned to keep the outward orientation). Vertex `v` of `a` is vertex `v` of the
+/// result, vertex `v` of `b` is `a.num_vertices() + v`.
+pub fn side_by_side(a: &Mesh, b: &Mesh, mirrored: bool, gap: f64) -> Mesh {
+    let n = a.num_vertices() as u32;
+    let (lo, hi) = crate::mesh::bounding_box(&a.vertices);
+    let (blo, bhi) = crate::mesh::bounding_box(&b.vertices);
+    // b's left edge at a's right edge plus the gap.
+    let left = hi[0] + gap * (hi[0] - lo[0]);
+    let mut vertices = a.vertices.clone();
+    vertices.extend(b.vertices.iter().map(|&[x, y, z]| if mirrored { [left + (bhi[0] - x), y, z] } else { [left + (x - blo[0]), y, z] }));
+    let mut triangles = a.triangles.clone();
+    triangles.extend(b.triangles.iter().map(|&[p, q, r]| if mirrored { [p + n, r + n, q + n] } else { [p + n, q + n, r + n] }));
+    Mesh::new(vertices, triangles, &MeshParams::default()).expect("generated meshes are valid")
+}
+
+/// Two copies of `mesh` ([`side_by_side`]) and the swap's ground truth: `truth[v]` is where
+/// `v` is in the other copy.
+pub fn pair(mesh: &Mesh, mirrored: bool, gap: f64) -> (Mesh, Vec<u32>) {
+    let n = mesh.num_vertices() as u32;
+    let truth = (0..2 * n).map(|v| if v < n { v + n } else { v - n }).collect();
+    (side_by_side(mesh, mesh, mirrored, gap), truth)
+}
+
 /// Flat midpoint subdivision: every triangle split into four at its edge midpoints. The surface
 /// is unchanged; vertex `v < n` stays vertex `v` (so a ground truth on the input vertices still
 /// holds), and each edge adds one vertex (n + #edges vertices in all). Non-manifold edges

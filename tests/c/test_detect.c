@@ -1,6 +1,8 @@
 /* Real results through the C ABI: on a mirror-symmetric quadruped the strongest symmetry sends
  * vertices to their mirror images; maps are in range; confidences in [0, 1]; the progress
- * callback is called with increasing fractions. Usage: test_detect MESH.off */
+ * callback is called with increasing fractions. Then two copies of the mesh side by side (two
+ * components): the strongest symmetry swaps them (component 0 <-> 1), each vertex going to
+ * its copy or to its copy's mirror image. Usage: test_detect MESH.off */
 #include "intrinsym.h"
 #include "common.h"
 
@@ -57,7 +59,44 @@ int main(int argc, char **argv) {
     q = sym_vertex_symmetry(r);
     CHECK(q != NULL, "vertex symmetry");
     for (i = 0; i < m.nv; i++) CHECK(q[i] >= s.confidence[i] - 1e-12 && q[i] <= 1.0, "summary");
+    {
+        sym_mesh_report info;
+        memset(&info, 0, sizeof info);
+        info.struct_size = sizeof info;
+        CHECK(sym_get_mesh_report(r, &info) == SYM_STATUS_OK && info.kept_components == 1, "one component");
+        CHECK(s.source_component == 0 && s.target_component == 0, "components %u -> %u", s.source_component, s.target_component);
+    }
     sym_free(r);
+    r = NULL;
+    {
+        /* Two copies, the second 3 units further along x. */
+        size_t n = m.nv, good = 0;
+        double *v2 = (double *)malloc(6 * n * sizeof(double));
+        uint32_t *t2 = (uint32_t *)malloc(6 * m.nt * sizeof(uint32_t));
+        sym_mesh_report info;
+        CHECK(v2 != NULL && t2 != NULL, "memory");
+        memcpy(v2, m.v, 3 * n * sizeof(double));
+        for (i = 0; i < 3 * n; i++) v2[3 * n + i] = m.v[i] + (i % 3 == 0 ? 3.0 : 0.0);
+        memcpy(t2, m.t, 3 * m.nt * sizeof(uint32_t));
+        for (i = 0; i < 3 * m.nt; i++) t2[3 * m.nt + i] = m.t[i] + (uint32_t)n;
+        CHECK(sym_detect(v2, 2 * n, t2, 2 * m.nt, p, NULL, NULL, &r) == SYM_STATUS_OK, "detect two components");
+        memset(&info, 0, sizeof info);
+        info.struct_size = sizeof info;
+        CHECK(sym_get_mesh_report(r, &info) == SYM_STATUS_OK && info.components == 2 && info.kept_components == 2, "two components kept (%zu)", info.kept_components);
+        memset(&s, 0, sizeof s);
+        s.struct_size = sizeof s;
+        CHECK(sym_get_map(r, 0, &s) == SYM_STATUS_OK, "get_map");
+        CHECK(s.source_component == 0 && s.target_component == 1 && s.order == 2 && s.kind == SYM_KIND_GLOBAL, "swap: components %u -> %u, order %u", s.source_component, s.target_component, s.order);
+        for (i = 0; i < n; i++) {
+            size_t img = (size_t)s.map[i], mir = mirror_of(&m, i);
+            if (s.map[i] >= 0 && (img == n + i || img == n + mir) && (size_t)s.map[n + i] < n) good++;
+        }
+        printf("two copies: %zu of %zu vertices map exactly to their copy or its mirror image\n", good, n);
+        CHECK(good >= n * 9 / 10, "only %zu exact", good);
+        free(v2);
+        free(t2);
+        sym_free(r);
+    }
     sym_params_free(p);
     free_mesh(&m);
     printf("test_detect: ok\n");
