@@ -41,6 +41,7 @@ use crate::cluster;
 use crate::descriptors::{wks, WksParams};
 use crate::distance::biharmonic;
 use crate::error::Error;
+use crate::hierarchy::Hierarchy;
 use crate::judge::{Judge, JudgeParams, Verdict};
 use crate::maps::{self, proxy::Proxy, Context, MapParams};
 use crate::mesh::Mesh;
@@ -101,6 +102,9 @@ pub struct Params {
     pub judge: JudgeParams,
     /// The continuous-symmetry test ([`crate::characterize::continuous`]).
     pub continuous: ContinuousParams,
+    /// A component of more than 1.5 times this many vertices is detected on a coarse mesh of
+    /// this many, and the maps are lifted ([`crate::hierarchy`]; default 6000, 0: never).
+    pub hierarchy_vertices: usize,
 }
 
 impl Default for Params {
@@ -123,6 +127,7 @@ impl Default for Params {
             max_order: 12,
             judge: JudgeParams::default(),
             continuous: ContinuousParams::default(),
+            hierarchy_vertices: 6000,
         }
     }
 }
@@ -227,6 +232,10 @@ pub struct Timings {
     pub maps_lift: f64,
     /// Maps between congruent components (0 for one component).
     pub congruence: f64,
+    /// The coarse mesh of a large component and its cells ([`crate::hierarchy`]; 0 without).
+    pub hierarchy: f64,
+    /// Lifting the coarse mesh's maps to every vertex (0 without a hierarchy).
+    pub lift: f64,
     /// Complexity, order, distortion.
     pub characterize: f64,
     /// Grouping.
@@ -253,6 +262,8 @@ impl Timings {
             (&mut self.maps_proxy, other.maps_proxy),
             (&mut self.maps_lift, other.maps_lift),
             (&mut self.congruence, other.congruence),
+            (&mut self.hierarchy, other.hierarchy),
+            (&mut self.lift, other.lift),
             (&mut self.characterize, other.characterize),
             (&mut self.cluster, other.cluster),
             (&mut self.total, other.total),
@@ -348,7 +359,7 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
     let (mesh, _) = mesh.normalized();
     let parts = mesh.components();
     if parts.len() == 1 {
-        return crate::parallel::on_pool(&mut flagged, |relay| pipeline(&mesh, params, relay).map(|(d, _)| d));
+        return crate::parallel::on_pool(&mut flagged, |relay| detect_part(&mesh, params, relay).map(|p| p.det));
     }
     crate::parallel::on_pool(&mut flagged, |relay| several(&mesh, &parts, params, relay))
 }
@@ -358,6 +369,95 @@ struct Spectral {
     basis: Eigenbasis,
     desc: Mat<f64>,
     emb: crate::distance::BiharmonicEmbedding,
+}
+
+/// One component's detection: the result in input indices, and what the congruence stage
+/// reuses: the spectral quantities, the mesh they belong to (the component's unit-area copy, or
+/// its coarse mesh's) and, for a coarse mesh, the hierarchy that lifts to the component.
+struct PartResult {
+    det: Detection,
+    spectral: Spectral,
+    domain: Mesh,
+    hierarchy: Option<Hierarchy>,
+}
+
+/// The pipeline on one connected component (unit area), directly or, for a large one, on its
+/// coarse mesh with the maps lifted back ([`crate::hierarchy`]). When the coarse mesh cannot be
+/// built (a mesh so irregular that its simplification is not a valid mesh) the component is
+/// detected at full resolution.
+fn detect_part(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool) -> Result<PartResult, Error> {
+    let n = mesh.num_vertices();
+    let t = Instant::now();
+    let built = if crate::hierarchy::wanted(n, params.hierarchy_vertices) { Hierarchy::new(mesh, params.hierarchy_vertices).ok() } else { None };
+    let Some(h) = built else {
+        let (det, spectral) = pipeline(mesh, params, progress)?;
+        return Ok(PartResult { det, spectral, domain: mesh.clone(), hierarchy: None });
+    };
+    let building = t.elapsed().as_secs_f64();
+    if !progress(0.05) {
+        return Err(Error::Cancelled { stage: "hierarchy" });
+    }
+    let (coarse, _) = h.coarse.normalized();
+    let (mut det, spectral) = pipeline(&coarse, params, &mut |f| progress(0.05 + 0.9 * f))?;
+    let t = Instant::now();
+    let m = coarse.num_vertices();
+    // The coarse detection's indices are the coarse mesh's inputs; its vertex c is input
+    // `coarse.input_index[c]`, fine vertex `h.seeds[c]`.
+    let mut to_coarse = vec![usize::MAX; coarse.info.input_vertices];
+    for (c, &i) in coarse.input_index.iter().enumerate() {
+        to_coarse[i as usize] = c;
+    }
+    let at = |c: usize| coarse.input_index[c] as usize;
+    let lifted = crate::parallel::map(&det.symmetries, |s: &Symmetry| {
+        let image: Vec<usize> = (0..m).map(|c| if s.map[at(c)] >= 0 { to_coarse[s.map[at(c)] as usize] } else { c }).collect();
+        let dense = maps::DenseMap {
+            map: (0..m).map(|c| if s.map[at(c)] >= 0 { image[c] as i64 } else { -1 }).collect(),
+            confidence: (0..m).map(|c| s.confidence[at(c)]).collect(),
+            mismatch: vec![0.0; m],
+            anchors: Vec::new(),
+            region_size: s.region_size,
+            global: s.kind == Kind::Global,
+            refined: true,
+            image,
+        };
+        h.lift(&mesh.vertices, &dense)
+    });
+    let fine = |i: usize| mesh.input_index[h.seeds[to_coarse[i]]] as usize;
+    // The judge on the fine mesh (the maps are reported there): ranks the lifted maps, as
+    // `report` ranks a mesh's own.
+    let judge = {
+        let oriented = mesh.oriented_triangles();
+        Judge::new(&mesh.vertices, mesh.vertex_normals(&oriented), &h.fine_adjacency, mesh.area().sqrt(), &params.judge)
+    };
+    for (s, dense) in det.symmetries.iter_mut().zip(lifted) {
+        s.verdict = judge.judge(&dense.map, s.distortion, params.max_distortion);
+        let mut map = vec![-1i64; mesh.info.input_vertices];
+        let mut confidence = vec![0.0; mesh.info.input_vertices];
+        for v in 0..n {
+            if dense.map[v] >= 0 {
+                map[mesh.input_index[v] as usize] = mesh.input_index[dense.map[v] as usize] as i64;
+                confidence[mesh.input_index[v] as usize] = dense.confidence[v];
+            }
+        }
+        for &(v, kept) in &mesh.welded {
+            map[v as usize] = map[kept as usize];
+            confidence[v as usize] = confidence[kept as usize];
+        }
+        (s.map, s.confidence, s.region_size) = (map, confidence, dense.region_size);
+        (s.source, s.target) = (fine(s.source), fine(s.target));
+        for pair in &mut s.support_pairs {
+            *pair = (fine(pair.0), fine(pair.1));
+        }
+    }
+    if det.continuous.dimension == 0 {
+        det.symmetries.sort_by(|a, b| b.verdict.score.total_cmp(&a.verdict.score));
+    }
+    (det.vertices, det.faces, det.mesh) = (mesh.info.input_vertices, mesh.info.input_triangles, mesh.info.clone());
+    det.components[0].vertices = n;
+    det.timings.hierarchy = building;
+    det.timings.lift = t.elapsed().as_secs_f64();
+    det.timings.total += building + det.timings.lift;
+    Ok(PartResult { det, spectral, domain: coarse, hierarchy: Some(h) })
 }
 
 /// [`detect`] on a mesh of several components (`parts`, largest first, in the indices of the
@@ -374,23 +474,20 @@ fn several(whole: &Mesh, parts: &[Mesh], params: &Params, progress: &mut dyn FnM
     // Phase 1: each component, its share of the progress by vertex count (the eigensolve
     // dominates and grows with it).
     let mut done = 0;
-    let mut detections = Vec::with_capacity(parts.len());
-    let mut units = Vec::with_capacity(parts.len());
+    let mut results: Vec<PartResult> = Vec::with_capacity(parts.len());
     for part in parts {
         let (lo, hi) = (0.9 * done as f64 / total_vertices as f64, 0.9 * (done + part.num_vertices()) as f64 / total_vertices as f64);
         done += part.num_vertices();
         let (unit, _) = part.normalized();
-        detections.push(pipeline(&unit, params, &mut |f| progress(lo + (hi - lo) * f))?);
-        units.push(unit);
+        results.push(detect_part(&unit, params, &mut |f| progress(lo + (hi - lo) * f))?);
     }
-    // Phase 2: maps between congruent components.
+    // Phase 2: maps between congruent components, on the meshes their spectra belong to.
     let t = Instant::now();
     let shares: Vec<f64> = parts.iter().map(|p| p.area() / total_area).collect();
-    let views: Vec<maps::congruent::Part<'_>> = units
+    let views: Vec<maps::congruent::Part<'_>> = results
         .iter()
-        .zip(&detections)
         .zip(parts)
-        .map(|((unit, (_, sp)), part)| maps::congruent::Part { mesh: unit, basis: &sp.basis, desc: &sp.desc, emb: &sp.emb, area: part.area() })
+        .map(|(r, part)| maps::congruent::Part { mesh: &r.domain, basis: &r.spectral.basis, desc: &r.spectral.desc, emb: &r.spectral.emb, area: part.area() })
         .collect();
     let cparams = maps::congruent::CongruentParams::default();
     let pairs: Vec<(usize, usize)> = (0..parts.len()).flat_map(|a| (a + 1..parts.len()).map(move |b| (a, b))).filter(|&(a, b)| maps::congruent::congruent(&views[a], &views[b], &cparams)).collect();
@@ -410,8 +507,8 @@ fn several(whole: &Mesh, parts: &[Mesh], params: &Params, progress: &mut dyn FnM
         Judge::new(&whole.vertices, whole.vertex_normals(&oriented), &whole.adjacency(), total_area.sqrt(), &params.judge)
     };
     let mut ranked: Vec<(f64, Symmetry)> = Vec::new();
-    for (c, (det, _)) in detections.iter().enumerate() {
-        for s in &det.symmetries {
+    for (c, r) in results.iter().enumerate() {
+        for s in &r.det.symmetries {
             let mut s = s.clone();
             s.components = [c, c];
             if shares[c] < params.maps.global_fraction {
@@ -421,7 +518,7 @@ fn several(whole: &Mesh, parts: &[Mesh], params: &Params, progress: &mut dyn FnM
         }
     }
     for (a, b, m) in &swaps {
-        let s = swap(whole, (&parts[*a], &parts[*b]), (&units[*a], &units[*b]), (&detections[*a].1, &detections[*b].1), [*a, *b], m, &judge, params, shares[*a] + shares[*b]);
+        let s = swap(whole, (&parts[*a], &parts[*b]), (&results[*a], &results[*b]), [*a, *b], m, &judge, params, shares[*a] + shares[*b]);
         ranked.push((s.verdict.score, s));
     }
     ranked.sort_by(|x, y| y.0.total_cmp(&x.0));
@@ -432,8 +529,8 @@ fn several(whole: &Mesh, parts: &[Mesh], params: &Params, progress: &mut dyn FnM
         s.group = g;
     }
     let mut timings = Timings::default();
-    for (det, _) in &detections {
-        timings.accumulate(&det.timings);
+    for r in &results {
+        timings.accumulate(&r.det.timings);
     }
     timings.congruence = congruence;
     timings.total = t_all.elapsed().as_secs_f64();
@@ -445,33 +542,45 @@ fn several(whole: &Mesh, parts: &[Mesh], params: &Params, progress: &mut dyn FnM
         faces: whole.info.input_triangles,
         symmetries,
         timings,
-        candidates: detections.iter().map(|(d, _)| d.candidates).sum(),
+        candidates: results.iter().map(|r| r.det.candidates).sum(),
         mesh: whole.info.clone(),
-        continuous: detections[0].0.continuous.clone(),
-        components: detections.iter().zip(&shares).map(|((d, _), &area)| Component { vertices: d.components[0].vertices, area, continuous: d.continuous.clone() }).collect(),
+        continuous: results[0].det.continuous.clone(),
+        components: results.iter().zip(&shares).map(|(r, &area)| Component { vertices: r.det.components[0].vertices, area, continuous: r.det.continuous.clone() }).collect(),
     })
 }
 
-/// The symmetry of the whole mesh that swaps congruent components `a` and `b` by `m`: in input
-/// indices, judged on the whole mesh, with the functional map of its `a → b` half.
+/// The symmetry of the whole mesh that swaps congruent components `a` and `b` by `m` (made on
+/// their `results`' domains: the components, or their coarse meshes, whose cells then carry
+/// the map to every vertex at the coarse precision): in input indices, judged on the whole
+/// mesh, with the functional map of its `a → b` half.
 #[allow(clippy::too_many_arguments)]
 fn swap(
     whole: &Mesh,
     parts: (&Mesh, &Mesh),
-    units: (&Mesh, &Mesh),
-    spectral: (&Spectral, &Spectral),
+    results: (&PartResult, &PartResult),
     components: [usize; 2],
     m: &maps::congruent::Between,
     judge: &Judge,
     params: &Params,
     share: f64,
 ) -> Symmetry {
+    // On the components' own vertices: a domain vertex is a component vertex, or a coarse
+    // vertex standing for its cell.
+    let to_part = |r: &PartResult, c: usize| r.hierarchy.as_ref().map_or(c, |h| h.seeds[c]);
+    let over_part = |r: &PartResult, part: &Mesh, other: &PartResult, map: &[usize]| -> Vec<usize> {
+        match &r.hierarchy {
+            None => map.iter().map(|&w| to_part(other, w)).collect(),
+            Some(h) => (0..part.num_vertices()).map(|v| to_part(other, map[h.owner[v] as usize])).collect(),
+        }
+    };
+    let forward = over_part(results.0, parts.0, results.1, &m.forward);
+    let backward = over_part(results.1, parts.1, results.0, &m.backward);
     let inputs = whole.info.input_vertices;
     let mut map = vec![-1i64; inputs];
-    for (v, &w) in m.forward.iter().enumerate() {
+    for (v, &w) in forward.iter().enumerate() {
         map[parts.0.input_index[v] as usize] = parts.1.input_index[w] as i64;
     }
-    for (v, &w) in m.backward.iter().enumerate() {
+    for (v, &w) in backward.iter().enumerate() {
         map[parts.1.input_index[v] as usize] = parts.0.input_index[w] as i64;
     }
     // The same map in the whole mesh's vertex indices, for its judge.
@@ -487,14 +596,14 @@ fn swap(
     // Confidence: how far below the distortion limit the map stays, on every mapped vertex.
     let level = (1.0 - m.distortion / params.max_distortion).clamp(0.0, 1.0);
     let confidence: Vec<f64> = map.iter().map(|&w| if w >= 0 { level } else { 0.0 }).collect();
-    // Functional map of the a → b half: C = Φ_aᵀ M_a Φ_b[T].
-    let k = params.maps.fmap_size.min(spectral.0.basis.k()).min(spectral.1.basis.k());
-    let (ba, bb) = (&spectral.0.basis, &spectral.1.basis);
+    // Functional map of the a → b half on the domains: C = Φ_aᵀ M_a Φ_b[T].
+    let (ba, bb) = (&results.0.spectral.basis, &results.1.spectral.basis);
+    let k = params.maps.fmap_size.min(ba.k()).min(bb.k());
     let fmap = Mat::<f64>::from_fn(k, k, |i, j| m.forward.iter().enumerate().map(|(v, &w)| ba.mass[v] * ba.evecs[(v, i)] * bb.evecs[(w, j)]).sum());
-    let samples = farthest_point(&spectral.0.emb, params.samples.min(units.0.num_vertices()), params.seed).vertices;
-    let to_input = |v: usize| parts.0.input_index[v] as usize;
-    let support_pairs: Vec<(usize, usize)> = samples.iter().map(|&v| (to_input(v), parts.1.input_index[m.forward[v]] as usize)).collect();
-    let region_size = m.forward.len() + m.backward.len();
+    let samples = farthest_point(&results.0.spectral.emb, params.samples.min(results.0.domain.num_vertices()), params.seed).vertices;
+    let to_input = |v: usize| parts.0.input_index[to_part(results.0, v)] as usize;
+    let support_pairs: Vec<(usize, usize)> = samples.iter().map(|&v| (to_input(v), parts.1.input_index[to_part(results.1, m.forward[v])] as usize)).collect();
+    let region_size = forward.len() + backward.len();
     Symmetry {
         source: support_pairs[0].0,
         target: support_pairs[0].1,

@@ -29,6 +29,7 @@ pub mod descriptors;
 pub mod detect;
 pub mod distance;
 pub mod error;
+pub mod hierarchy;
 pub mod eval;
 pub mod ffi;
 pub mod judge;

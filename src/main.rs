@@ -62,6 +62,10 @@ enum Command {
         /// many vertices and lift them to every vertex (0: always on the whole mesh).
         #[arg(long, default_value_t = 6000)]
         proxy_vertices: usize,
+        /// On a component of more than 1.5 times this many vertices, detect on a coarse mesh of
+        /// this many vertices and lift the maps to every vertex (0: always at full resolution).
+        #[arg(long, default_value_t = 6000)]
+        hierarchy_vertices: usize,
         /// Number of symmetry groups (default: automatic).
         #[arg(long)]
         groups: Option<usize>,
@@ -151,6 +155,7 @@ fn run(cli: Cli) -> Result<(), intrinsym::Error> {
             accept,
             polish,
             proxy_vertices,
+            hierarchy_vertices,
             groups,
             reject_non_manifold,
             allow_non_manifold: _,
@@ -178,6 +183,7 @@ fn run(cli: Cli) -> Result<(), intrinsym::Error> {
             params.maps.accept = accept;
             params.maps.polish = polish;
             params.maps.proxy_vertices = proxy_vertices;
+            params.hierarchy_vertices = hierarchy_vertices;
             params.groups = groups;
             // A progress bar on stderr, hidden when stderr is not a terminal.
             let bar = indicatif::ProgressBar::with_draw_target(Some(1000), indicatif::ProgressDrawTarget::stderr());
@@ -222,6 +228,9 @@ fn run(cli: Cli) -> Result<(), intrinsym::Error> {
                 t.maps,
                 t.characterize + t.cluster
             );
+            if t.hierarchy > 0.0 {
+                println!("  detected on a coarse mesh of {} vertices ({:.2} s to build it, {:.2} s to lift the maps to every vertex)", params.hierarchy_vertices, t.hierarchy, t.lift);
+            }
             if det.components.len() > 1 {
                 println!("  {} components processed, each on its own ({:.2} s mapping congruent ones onto each other):", det.components.len(), t.congruence);
                 for (i, c) in det.components.iter().enumerate() {

@@ -67,6 +67,7 @@ fn set_param(p: &mut Params, kv: &str) -> Result<(), String> {
         "search_vertices" => p.maps.search_vertices = u()?,
         "global_fraction" => p.maps.global_fraction = f()?,
         "proxy_vertices" => p.maps.proxy_vertices = u()?,
+        "hierarchy_vertices" => p.hierarchy_vertices = u()?,
         "fixed_radius" => p.judge.fixed_radius = f()?,
         "stencil" => p.judge.stencil = f()?,
         "max_fixed" => p.max_fixed = f()?,

@@ -134,63 +134,79 @@ impl Proxy {
     /// The map `m` of the proxy lifted to every mesh vertex (see the module docs): `positions`
     /// are the mesh's.
     pub fn lift(&self, positions: &[[f64; 3]], m: &DenseMap) -> DenseMap {
-        let n = self.owner.len();
-        let adjacency = &self.mesh_adjacency;
-        let (coff, cnbr) = &self.adjacency;
-        let d = |a: &[f64; 3], b: &[f64; 3]| ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt();
-        let mut image = vec![usize::MAX; n];
-        // Each seed maps to its proxy image; the other vertices are placed breadth-first from
-        // the seeds, so that a vertex's neighbour is placed before it and gives it a start.
-        for (c, &s) in self.seeds.iter().enumerate() {
-            image[s] = self.seeds[m.image[c]];
+        lift(&self.seeds, &self.owner, &self.positions, &self.adjacency, &self.mesh_adjacency, positions, m)
+    }
+}
+
+/// The map `m` of a proxy (vertex `c` at mesh vertex `seeds[c]`, at `seed_positions[c]`, with
+/// the graph `seed_adjacency`) lifted to every vertex of the mesh (`positions`, graph
+/// `mesh_adjacency`, `owner[v]` the proxy vertex whose cell holds `v`), by the local
+/// trilateration of the module docs.
+pub(crate) fn lift(
+    seeds: &[usize],
+    owner: &[u32],
+    seed_positions: &[[f64; 3]],
+    seed_adjacency: &(Vec<usize>, Vec<u32>),
+    mesh_adjacency: &(Vec<usize>, Vec<u32>),
+    positions: &[[f64; 3]],
+    m: &DenseMap,
+) -> DenseMap {
+    let n = owner.len();
+    let adjacency = mesh_adjacency;
+    let (coff, cnbr) = seed_adjacency;
+    let d = |a: &[f64; 3], b: &[f64; 3]| ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt();
+    let mut image = vec![usize::MAX; n];
+    // Each seed maps to its proxy image; the other vertices are placed breadth-first from
+    // the seeds, so that a vertex's neighbour is placed before it and gives it a start.
+    for (c, &s) in seeds.iter().enumerate() {
+        image[s] = seeds[m.image[c]];
+    }
+    // (distance from v to seed c', image position of c') for c and its neighbours.
+    let mut frame: Vec<(f64, [f64; 3])> = Vec::new();
+    super::breadth_first(adjacency, seeds, |v, u| {
+        let c = owner[u] as usize;
+        frame.clear();
+        for &c2 in std::iter::once(&(c as u32)).chain(&cnbr[coff[c]..coff[c + 1]]) {
+            let c2 = c2 as usize;
+            frame.push((d(&positions[u], &seed_positions[c2]), positions[seeds[m.image[c2]]]));
         }
-        // (distance from v to seed c', image position of c') for c and its neighbours.
-        let mut frame: Vec<(f64, [f64; 3])> = Vec::new();
-        super::breadth_first(adjacency, &self.seeds, |v, u| {
-            let c = self.owner[u] as usize;
-            frame.clear();
-            for &c2 in std::iter::once(&(c as u32)).chain(&cnbr[coff[c]..coff[c + 1]]) {
-                let c2 = c2 as usize;
-                frame.push((d(&positions[u], &self.positions[c2]), positions[self.seeds[m.image[c2]]]));
-            }
-            let cost = |w: usize| frame.iter().map(|(dv, t)| (dv - d(&positions[w], t)).abs()).sum::<f64>();
-            let own = self.seeds[m.image[c]];
-            let from_neighbour = image[v];
-            let start = if cost(from_neighbour) < cost(own) { from_neighbour } else { own };
-            image[u] = super::greedy_descent(adjacency, start, cost).0;
-        });
-        // Every component has a seed (`geodesic_farthest_points`), so every vertex is placed.
-        debug_assert!(image.iter().all(|&w| w != usize::MAX));
-        let mut map = vec![-1i64; n];
-        let mut confidence = vec![0.0; n];
-        let mut mismatch = vec![0.0; n];
-        let mut region_size = 0;
-        for v in 0..n {
-            let c = self.owner[v] as usize;
-            mismatch[v] = m.mismatch[c];
-            if m.map[c] >= 0 {
-                map[v] = image[v] as i64;
-                confidence[v] = m.confidence[c];
-                region_size += 1;
-            }
+        let cost = |w: usize| frame.iter().map(|(dv, t)| (dv - d(&positions[w], t)).abs()).sum::<f64>();
+        let own = seeds[m.image[c]];
+        let from_neighbour = image[v];
+        let start = if cost(from_neighbour) < cost(own) { from_neighbour } else { own };
+        image[u] = super::greedy_descent(adjacency, start, cost).0;
+    });
+    // Every component has a seed (`geodesic_farthest_points`), so every vertex is placed.
+    debug_assert!(image.iter().all(|&w| w != usize::MAX));
+    let mut map = vec![-1i64; n];
+    let mut confidence = vec![0.0; n];
+    let mut mismatch = vec![0.0; n];
+    let mut region_size = 0;
+    for v in 0..n {
+        let c = owner[v] as usize;
+        mismatch[v] = m.mismatch[c];
+        if m.map[c] >= 0 {
+            map[v] = image[v] as i64;
+            confidence[v] = m.confidence[c];
+            region_size += 1;
         }
-        DenseMap {
-            map,
-            confidence,
-            mismatch,
-            anchors: m.anchors.iter().map(|&(a, b)| (self.seeds[a], self.seeds[b])).collect(),
-            region_size,
-            global: m.global,
-            refined: m.refined,
-            image,
-        }
+    }
+    DenseMap {
+        map,
+        confidence,
+        mismatch,
+        anchors: m.anchors.iter().map(|&(a, b)| (seeds[a], seeds[b])).collect(),
+        region_size,
+        global: m.global,
+        refined: m.refined,
+        image,
     }
 }
 
 /// Farthest-point sampling in edge-graph distance, starting from the seeds `first`, up to
 /// `size` seeds; returns the seeds and the nearest seed (Voronoi cell) of every vertex. A
 /// component of the graph without a seed is infinitely far, so every component gets one.
-fn geodesic_farthest_points(graph: &EdgeGraph, first: &[usize], size: usize) -> (Vec<usize>, Vec<u32>) {
+pub(crate) fn geodesic_farthest_points(graph: &EdgeGraph, first: &[usize], size: usize) -> (Vec<usize>, Vec<u32>) {
     let n = graph.off.len() - 1;
     let mut dist = vec![f64::INFINITY; n];
     let mut owner = vec![u32::MAX; n];

@@ -2,10 +2,10 @@
 //!
 //! ```text
 //! { "vertices": n, "faces": m,
-//!   "params": { "eigenpairs", "samples", "seed", "wks_quantile", "eps", "accept", "polish", "proxy_vertices", "groups" },
+//!   "params": { "eigenpairs", "samples", "seed", "wks_quantile", "eps", "accept", "polish", "proxy_vertices", "hierarchy_vertices", "groups" },
 //!   "timings": { "spectral", "descriptors", "distance", "sampling", "voting", "maps",
 //!                "maps_proxy", "maps_profile", "maps_fmap", "maps_refine", "maps_polish", "maps_compose", "maps_lift",
-//!                "congruence", "characterize", "cluster", "total" },   // seconds
+//!                "congruence", "hierarchy", "lift", "characterize", "cluster", "total" },   // seconds
 //!   "continuous": { "dimension": d, "residuals": [floats] },   // d > 0: a continuous family
 //!   "components": [ { "vertices", "area", "continuous": { "dimension", "residuals" } } ],
 //!                                   // processed components, largest first; area: share
@@ -84,6 +84,7 @@ pub fn to_json(det: &Detection, params: &Params) -> Value {
             "accept": params.maps.accept,
             "polish": params.maps.polish,
             "proxy_vertices": params.maps.proxy_vertices,
+            "hierarchy_vertices": params.hierarchy_vertices,
             "groups": params.groups,
         },
         "timings": {
@@ -101,6 +102,8 @@ pub fn to_json(det: &Detection, params: &Params) -> Value {
             "maps_proxy": t.maps_proxy,
             "maps_lift": t.maps_lift,
             "congruence": t.congruence,
+            "hierarchy": t.hierarchy,
+            "lift": t.lift,
             "characterize": t.characterize,
             "cluster": t.cluster,
             "total": t.total,
