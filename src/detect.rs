@@ -102,7 +102,7 @@ pub struct Params {
     pub judge: JudgeParams,
     /// The continuous-symmetry test ([`crate::characterize::continuous`]).
     pub continuous: ContinuousParams,
-    /// A component of more than 1.5 times this many vertices is detected on a coarse mesh of
+    /// A component of more than 3 times this many vertices is detected on a coarse mesh of
     /// this many, and the maps are lifted ([`crate::hierarchy`]; default 6000, 0: never).
     pub hierarchy_vertices: usize,
 }
