@@ -388,17 +388,27 @@ struct PartResult {
 fn detect_part(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool) -> Result<PartResult, Error> {
     let n = mesh.num_vertices();
     let t = Instant::now();
-    let built = if crate::hierarchy::wanted(n, params.hierarchy_vertices) { Hierarchy::new(mesh, params.hierarchy_vertices).ok() } else { None };
+    // The simplification has the first 10% of the progress, the coarse detection the next
+    // 80%, the lift the rest.
+    let built = if crate::hierarchy::wanted(n, params.hierarchy_vertices) {
+        match Hierarchy::with_progress(mesh, params.hierarchy_vertices, &mut |f| progress(0.1 * f)) {
+            Ok(h) => Some(h),
+            Err(crate::hierarchy::HierarchyError::Cancelled) => return Err(Error::Cancelled { stage: "hierarchy" }),
+            Err(crate::hierarchy::HierarchyError::Mesh(_)) => None,
+        }
+    } else {
+        None
+    };
     let Some(h) = built else {
         let (det, spectral) = pipeline(mesh, params, progress)?;
         return Ok(PartResult { det, spectral, domain: mesh.clone(), hierarchy: None });
     };
     let building = t.elapsed().as_secs_f64();
-    if !progress(0.05) {
+    if !progress(0.1) {
         return Err(Error::Cancelled { stage: "hierarchy" });
     }
     let (coarse, _) = h.coarse.normalized();
-    let (mut det, spectral) = pipeline(&coarse, params, &mut |f| progress(0.05 + 0.9 * f))?;
+    let (mut det, spectral) = pipeline(&coarse, params, &mut |f| progress(0.1 + 0.8 * f))?;
     let t = Instant::now();
     let m = coarse.num_vertices();
     // The coarse detection's indices are the coarse mesh's inputs; its vertex c is input
@@ -408,7 +418,7 @@ fn detect_part(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bo
         to_coarse[i as usize] = c;
     }
     let at = |c: usize| coarse.input_index[c] as usize;
-    let lifted = crate::parallel::map(&det.symmetries, |s: &Symmetry| {
+    let lift_one = |s: &Symmetry| {
         let image: Vec<usize> = (0..m).map(|c| if s.map[at(c)] >= 0 { to_coarse[s.map[at(c)] as usize] } else { c }).collect();
         let dense = maps::DenseMap {
             map: (0..m).map(|c| if s.map[at(c)] >= 0 { image[c] as i64 } else { -1 }).collect(),
@@ -421,7 +431,17 @@ fn detect_part(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bo
             image,
         };
         h.lift(&mesh.vertices, &dense)
-    });
+    };
+    // In rounds of as many maps as cores, with a progress call (and a chance to cancel)
+    // between rounds: a map's lift takes seconds on a 10⁶-vertex mesh.
+    let mut lifted = Vec::with_capacity(det.symmetries.len());
+    let cores = crate::parallel::cores();
+    for (i, round) in det.symmetries.chunks(cores).enumerate() {
+        if !progress(0.9 + 0.1 * (i * cores) as f64 / det.symmetries.len() as f64) {
+            return Err(Error::Cancelled { stage: "lift" });
+        }
+        lifted.extend(crate::parallel::map(round, lift_one));
+    }
     let fine = |i: usize| mesh.input_index[h.seeds[to_coarse[i]]] as usize;
     // The judge on the fine mesh (the maps are reported there): ranks the lifted maps, as
     // `report` ranks a mesh's own.
@@ -457,6 +477,9 @@ fn detect_part(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bo
     det.timings.hierarchy = building;
     det.timings.lift = t.elapsed().as_secs_f64();
     det.timings.total += building + det.timings.lift;
+    if !progress(1.0) {
+        return Err(Error::Cancelled { stage: "report" });
+    }
     Ok(PartResult { det, spectral, domain: coarse, hierarchy: Some(h) })
 }
 

@@ -576,3 +576,21 @@ fn noisy_quadrupeds_on_the_hierarchy() {
     }
     assert!(first_is_mirror >= 7, "the mirror first in {first_is_mirror} of 8");
 }
+
+/// On the hierarchy, progress moves inside the simplification (several calls below 10%) and
+/// cancelling there stops with the stage named; progress never goes back.
+#[test]
+fn the_hierarchy_reports_progress_and_can_be_cancelled() {
+    let c = shapes::quadruped(6, Pose::Walking, 0.0, 0);
+    let mut calls = Vec::new();
+    let d = detect(&c.mesh, &Params::default(), &mut |f| {
+        calls.push(f);
+        true
+    });
+    assert!(d.is_ok());
+    assert!(calls.windows(2).all(|w| w[1] >= w[0]), "progress went back");
+    assert!(calls.iter().filter(|&&f| f > 0.0 && f < 0.1).count() >= 3, "steady progress while simplifying: {:?}", &calls[..calls.len().min(12)]);
+    assert_eq!(calls.last(), Some(&1.0));
+    let e = detect(&c.mesh, &Params::default(), &mut |f| f <= 0.0 || f >= 0.1).unwrap_err();
+    assert!(matches!(e, Error::Cancelled { stage: "hierarchy" }), "{e:?}");
+}

@@ -58,13 +58,31 @@ pub struct Hierarchy {
     pub fine_adjacency: (Vec<usize>, Vec<u32>),
 }
 
+/// Why a hierarchy was not built.
+#[derive(Debug)]
+pub enum HierarchyError {
+    /// The coarse mesh is not a valid mesh.
+    Mesh(MeshError),
+    /// The progress callback said stop.
+    Cancelled,
+}
+
 impl Hierarchy {
     /// The coarse mesh of about `size` vertices of `mesh` (one connected component), its cells.
     pub fn new(mesh: &Mesh, size: usize) -> Result<Hierarchy, MeshError> {
-        let s = simplify::simplify(mesh, size);
+        Self::with_progress(mesh, size, &mut |_| true).map_err(|e| match e {
+            HierarchyError::Mesh(e) => e,
+            HierarchyError::Cancelled => unreachable!("never cancelled"),
+        })
+    }
+
+    /// [`Hierarchy::new`], reporting the simplification's progress in [0, 1] (cancelled when
+    /// `progress` returns `false`).
+    pub fn with_progress(mesh: &Mesh, size: usize, progress: &mut dyn FnMut(f64) -> bool) -> Result<Hierarchy, HierarchyError> {
+        let s = simplify::simplify_with_progress(mesh, size, progress).ok_or(HierarchyError::Cancelled)?;
         let positions: Vec<[f64; 3]> = s.kept.iter().map(|&v| mesh.vertices[v]).collect();
         // Coincident fine vertices are self-contacts here (welding ran on the input): keep them.
-        let coarse = Mesh::new(positions, s.triangles, &MeshParams { weld: false, ..Default::default() })?;
+        let coarse = Mesh::new(positions, s.triangles, &MeshParams { weld: false, ..Default::default() }).map_err(HierarchyError::Mesh)?;
         let seeds: Vec<usize> = coarse.input_index.iter().map(|&i| s.kept[i as usize]).collect();
         let fine_adjacency = mesh.adjacency();
         let graph = EdgeGraph::new(&mesh.vertices, fine_adjacency.clone());

@@ -114,6 +114,12 @@ pub struct Simplified {
 
 /// Collapses edges of `mesh` until at most `target` vertices remain or no collapse is allowed.
 pub fn simplify(mesh: &Mesh, target: usize) -> Simplified {
+    simplify_with_progress(mesh, target, &mut |_| true).expect("never cancelled")
+}
+
+/// [`simplify`], calling `progress(fraction of the collapses done)` after every round;
+/// `None` when it returns `false` (cancelled).
+pub fn simplify_with_progress(mesh: &Mesh, target: usize, progress: &mut dyn FnMut(f64) -> bool) -> Option<Simplified> {
     let n = mesh.num_vertices();
     let p = &mesh.vertices;
     let mut faces: Vec<[u32; 3]> = mesh.triangles.clone();
@@ -283,6 +289,9 @@ pub fn simplify(mesh: &Mesh, target: usize) -> Simplified {
         if removed == 0 {
             break;
         }
+        if !progress((n - alive) as f64 / (n - target.min(n)).max(1) as f64) {
+            return None;
+        }
     }
     let kept: Vec<usize> = (0..n).filter(|&v| vertex_alive[v]).collect();
     let mut index = vec![u32::MAX; n];
@@ -290,7 +299,7 @@ pub fn simplify(mesh: &Mesh, target: usize) -> Simplified {
         index[v] = i as u32;
     }
     let triangles = faces.iter().zip(&face_alive).filter(|(_, &a)| a).map(|(t, _)| t.map(|v| index[v as usize])).collect();
-    Simplified { kept, triangles }
+    Some(Simplified { kept, triangles })
 }
 
 #[cfg(test)]
