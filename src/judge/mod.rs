@@ -129,8 +129,20 @@ impl Judge {
         let stride = (n / params.stencils.max(1)).max(1);
         let mut stencils = Vec::new();
         let mut seen = vec![u32::MAX; n];
+        // The breadth-first search of a stencil goes out to twice the rings `reach` needs at
+        // the mean edge length (at least 12): a fixed 12 rings fell short of `reach` on meshes
+        // of about 10⁶ vertices, which then had no stencil at all (every score 0).
+        let (mut total, mut count) = (0.0, 0usize);
         for v in (0..n).step_by(stride) {
-            if let Some(s) = stencil(positions, &normals, adjacency, v, reach, &mut seen) {
+            for &w in &adjacency.1[adjacency.0[v]..adjacency.0[v + 1]] {
+                total += norm(sub(positions[w as usize], positions[v]));
+                count += 1;
+            }
+        }
+        let mean_edge = if count > 0 { total / count as f64 } else { 0.0 };
+        let rings = if mean_edge > 0.0 { ((2.0 * reach / mean_edge).ceil() as usize).clamp(12, 1000) } else { 12 };
+        for v in (0..n).step_by(stride) {
+            if let Some(s) = stencil(positions, &normals, adjacency, v, reach, rings, &mut seen) {
                 stencils.push(s);
             }
         }
@@ -191,16 +203,16 @@ impl Judge {
 /// The stencil of `v`: two vertices `a`, `b` at about `reach` from `v` (breadth-first over the
 /// graph) whose directions, seen along `n_v`, are as close to perpendicular as possible,
 /// ordered so that `s(v, a, b) = +1`; `None` where no good pair exists (a boundary spike).
-fn stencil(positions: &[[f64; 3]], normals: &[[f64; 3]], adjacency: &(Vec<usize>, Vec<u32>), v: usize, reach: f64, seen: &mut [u32]) -> Option<[u32; 3]> {
+fn stencil(positions: &[[f64; 3]], normals: &[[f64; 3]], adjacency: &(Vec<usize>, Vec<u32>), v: usize, reach: f64, rings: usize, seen: &mut [u32]) -> Option<[u32; 3]> {
     let nv = normals[v];
     if norm(nv) == 0.0 {
         return None;
     }
-    // Vertices reached by breadth-first search, stopped past `reach` (at most 12 rings).
+    // Vertices reached by breadth-first search, stopped past `reach` (at most `rings` rings).
     let mut frontier = vec![v as u32];
     seen[v] = v as u32;
     let mut ring: Vec<u32> = Vec::new();
-    for _ in 0..12 {
+    for _ in 0..rings {
         let mut next = Vec::new();
         for &u in &frontier {
             for &w in &adjacency.1[adjacency.0[u as usize]..adjacency.0[u as usize + 1]] {
@@ -245,6 +257,20 @@ mod tests {
 
     fn judge_of(mesh: &Mesh) -> Judge {
         Judge::new(&mesh.vertices, vertex_normals(mesh), &mesh.adjacency(), mesh.area().sqrt(), &JudgeParams::default())
+    }
+
+    /// Stencils whose reach is many more rings than 12 away (a fine mesh: on 10⁶ vertices the
+    /// default reach is about 40 rings) still exist, and still tell a mirror from the identity.
+    #[test]
+    fn stencils_reach_beyond_twelve_rings() {
+        let mesh = shapes::icosphere(5);
+        let params = JudgeParams { stencil: 0.3, ..Default::default() };
+        let j = Judge::new(&mesh.vertices, vertex_normals(&mesh), &mesh.adjacency(), mesh.area().sqrt(), &params);
+        assert!(j.len() > 300, "{} stencils", j.len());
+        let mirror: Vec<i64> = shapes::mirror_map(&mesh, 0).iter().map(|&w| w as i64).collect();
+        let identity: Vec<i64> = (0..mesh.num_vertices() as i64).collect();
+        assert!(j.judge(&mirror, 0.0, 0.04).reversal > 0.95);
+        assert!(j.judge(&identity, 0.0, 0.04).reversal < 0.05);
     }
 
     #[test]
