@@ -20,12 +20,14 @@ use crate::mesh::Mesh;
 /// Weight of the edge-length term `β |e|⁴` added to the quadric cost of a collapse (on the
 /// unit-area mesh the detection works on). The quadric alone removes flat regions first and
 /// leaves their triangles long and thin, the coarse mesh's density following curvature; the
-/// term makes the coarse mesh more even, which the sampling and maps expect. Measured over
-/// the shapes of `../shared/data` that get a hierarchy (5 KIDS poses at 60k, 13 SHREC'16 kids
-/// at 11–12k), best acc@0.05: β = 0 gave KIDS 78.7%; 0.1: 91.6 / SHREC'16 45.6%; 1: 90.5 /
-/// 50.8%; 3: 87.8 / 45.5%; 10: 90.3 / 58.1%; 100: 85.0% KIDS (full resolution: 85.2 / 54.6%).
-/// The SHREC'16 figures swing by several points between neighbouring values: on those glued,
-/// self-touching scans the result is fragile whatever the coarse mesh.
+/// term makes the coarse mesh more even, which the sampling and maps expect. Measured with a
+/// first version of this simplification (one global heap, strictly cheapest first) on the 5
+/// KIDS poses at 60k and the 13 SHREC'16 kids at 11–12k vertices, best acc@0.05: β = 0 gave
+/// KIDS 78.7%; 0.1: 91.6 / SHREC'16 45.6%; 1: 90.5 / 50.8%; 3: 87.8 / 45.5%; 10: 90.3 /
+/// 58.1%; 100: 85.0% KIDS (full resolution: 85.2 / 54.6%). The SHREC'16 figures swing by
+/// several points between neighbouring values (on those glued, self-touching scans the result
+/// is fragile whatever the coarse mesh), which is why meshes of their size are not simplified
+/// ([`super::MARGIN`]). With the rounds below, β = 10: KIDS 87.5%.
 const LENGTH_WEIGHT: f64 = 10.0;
 
 /// A symmetric 4 × 4 quadric, upper triangle: `a b c d / e f g / h i / j`.
@@ -75,24 +77,52 @@ fn neighbours(v: usize, around: &[Vec<u32>], faces: &[[u32; 3]], out: &mut Vec<u
     out.dedup();
 }
 
-/// Whether `u` can collapse into `v` (see the module docs): the faces on the edge and their
-/// apexes if so. `nu`, `nv` are scratch space.
+/// The faces on an edge (at most two: edges at an unlocked vertex are manifold) and their
+/// apexes.
+#[derive(Clone, Copy)]
+struct Edge {
+    faces: [u32; 2],
+    apexes: [u32; 2],
+    count: usize,
+}
+
+impl Edge {
+    fn faces(&self) -> &[u32] {
+        &self.faces[..self.count]
+    }
+    fn apexes(&self) -> &[u32] {
+        &self.apexes[..self.count]
+    }
+}
+
+/// Whether `u` (unlocked) can collapse into `v` (see the module docs): the faces on the edge
+/// and their apexes if so. `nu`, `nv` are scratch space.
 #[allow(clippy::too_many_arguments)]
-fn collapsible(u: usize, v: usize, p: &[[f64; 3]], around: &[Vec<u32>], faces: &[[u32; 3]], boundary: &[bool], nu: &mut Vec<u32>, nv: &mut Vec<u32>) -> Option<(Vec<u32>, Vec<u32>)> {
-    let shared: Vec<u32> = around[u].iter().copied().filter(|&f| faces[f as usize].contains(&(v as u32))).collect();
-    if shared.is_empty() || (boundary[u] && !(shared.len() == 1 && boundary[v])) {
+fn collapsible(u: usize, v: usize, p: &[[f64; 3]], around: &[Vec<u32>], faces: &[[u32; 3]], boundary: &[bool], nu: &mut Vec<u32>, nv: &mut Vec<u32>) -> Option<Edge> {
+    let mut e = Edge { faces: [0; 2], apexes: [0; 2], count: 0 };
+    for &f in &around[u] {
+        let t = faces[f as usize];
+        if t.contains(&(v as u32)) {
+            if e.count == 2 {
+                return None;
+            }
+            e.faces[e.count] = f;
+            e.apexes[e.count] = t.iter().copied().find(|&w| w as usize != u && w as usize != v).expect("a triangle has three vertices");
+            e.count += 1;
+        }
+    }
+    if e.count == 0 || (boundary[u] && !(e.count == 1 && boundary[v])) {
         return None;
     }
-    let apexes: Vec<u32> = shared.iter().map(|&f| faces[f as usize].iter().copied().find(|&w| w as usize != u && w as usize != v).expect("a triangle has three vertices")).collect();
     // Link condition.
     neighbours(u, around, faces, nu);
     neighbours(v, around, faces, nv);
     let common = nu.iter().filter(|w| nv.binary_search(w).is_ok()).count();
-    if common != apexes.len() {
+    if common != e.count {
         return None;
     }
     // No face folds over or collapses.
-    let folds = around[u].iter().filter(|f| !shared.contains(f)).any(|&f| {
+    let folds = around[u].iter().filter(|f| !e.faces().contains(f)).any(|&f| {
         let t = faces[f as usize];
         let at = |w: u32| if w as usize == u { p[v] } else { p[w as usize] };
         let old = cross(sub(p[t[1] as usize], p[t[0] as usize]), sub(p[t[2] as usize], p[t[0] as usize]));
@@ -100,7 +130,16 @@ fn collapsible(u: usize, v: usize, p: &[[f64; 3]], around: &[Vec<u32>], faces: &
         let (lo, ln) = (dot(old, old).sqrt(), dot(new, new).sqrt());
         ln <= 1e-12 * lo.max(f64::MIN_POSITIVE) || dot(old, new) <= 0.0
     });
-    (!folds).then_some((shared, apexes))
+    (!folds).then_some(e)
+}
+
+/// Scratch space of one thread's collapse costing.
+#[derive(Default)]
+struct Scratch {
+    nb: Vec<u32>,
+    nu: Vec<u32>,
+    nv: Vec<u32>,
+    options: Vec<(u64, u32)>,
 }
 
 /// The simplified mesh: `kept[i]` is the fine vertex of coarse vertex `i`; `triangles` index
@@ -204,16 +243,17 @@ pub fn simplify_with_progress(mesh: &Mesh, target: usize, progress: &mut dyn FnM
     // cheapest was refused stayed stuck (KIDS 60k 68.8% against 87.5%).
     // Each vertex's cheapest allowed collapse (as a heap of every edge would pop it), recomputed
     // only where a collapse changed the neighbourhood (`dirty`).
-    let best_of = |u: usize, around: &[Vec<u32>], faces: &[[u32; 3]], quadric: &[Quadric], boundary: &[bool], nb: &mut Vec<u32>| -> (u64, u32) {
-        let (mut su, mut sv) = (Vec::new(), Vec::new());
+    let best_of = |u: usize, around: &[Vec<u32>], faces: &[[u32; 3]], quadric: &[Quadric], boundary: &[bool], scratch: &mut Scratch| -> (u64, u32) {
+        let Scratch { nb, nu, nv, options } = scratch;
         neighbours(u, around, faces, nb);
-        let mut options: Vec<(u64, u32)> = nb.iter().map(|&v| (cost(u, v as usize, quadric).to_bits(), v)).collect();
+        options.clear();
+        options.extend(nb.iter().map(|&v| (cost(u, v as usize, quadric).to_bits(), v)));
         options.sort_unstable();
-        options.into_iter().find(|&(_, v)| collapsible(u, v as usize, p, around, faces, boundary, &mut su, &mut sv).is_some()).unwrap_or((u64::MAX, u as u32))
+        options.iter().copied().find(|&(_, v)| collapsible(u, v as usize, p, around, faces, boundary, nu, nv).is_some()).unwrap_or((u64::MAX, u as u32))
     };
     let mut best: Vec<(u64, u32)> = crate::parallel::chunks(n, |range| {
-        let mut nb = Vec::new();
-        range.map(|u| best_of(u, &around, &faces, &quadric, &boundary, &mut nb)).collect::<Vec<_>>()
+        let mut scratch = Scratch::default();
+        range.map(|u| best_of(u, &around, &faces, &quadric, &boundary, &mut scratch)).collect::<Vec<_>>()
     })
     .concat();
     let mut live: Vec<u32> = (0..n as u32).filter(|&u| !locked[u as usize]).collect();
@@ -221,8 +261,8 @@ pub fn simplify_with_progress(mesh: &Mesh, target: usize, progress: &mut dyn FnM
     while alive > target {
         // Independent per vertex: on all cores.
         let fresh = crate::parallel::chunks(dirty.len(), |range| {
-            let mut nb = Vec::new();
-            range.filter(|&i| vertex_alive[dirty[i]]).map(|i| (dirty[i], best_of(dirty[i], &around, &faces, &quadric, &boundary, &mut nb))).collect::<Vec<_>>()
+            let mut scratch = Scratch::default();
+            range.filter(|&i| vertex_alive[dirty[i]]).map(|i| (dirty[i], best_of(dirty[i], &around, &faces, &quadric, &boundary, &mut scratch))).collect::<Vec<_>>()
         });
         for (u, b) in fresh.into_iter().flatten() {
             best[u] = b;
@@ -248,9 +288,10 @@ pub fn simplify_with_progress(mesh: &Mesh, target: usize, progress: &mut dyn FnM
             if touched[u] || touched[v] {
                 continue;
             }
-            let Some((shared, apexes)) = collapsible(u, v, p, &around, &faces, &boundary, &mut nu, &mut nv) else { continue };
+            let Some(edge) = collapsible(u, v, p, &around, &faces, &boundary, &mut nu, &mut nv) else { continue };
+            let (shared, apexes) = (edge.faces(), edge.apexes());
             // Collapse u into v.
-            for &f in &shared {
+            for &f in shared {
                 face_alive[f as usize] = false;
             }
             let moved: Vec<u32> = around[u].iter().copied().filter(|&f| face_alive[f as usize]).collect();
@@ -264,7 +305,7 @@ pub fn simplify_with_progress(mesh: &Mesh, target: usize, progress: &mut dyn FnM
             around[u].clear();
             around[v].retain(|&f| face_alive[f as usize]);
             around[v].extend(moved);
-            for &a in &apexes {
+            for &a in apexes {
                 around[a as usize].retain(|&f| face_alive[f as usize]);
             }
             vertex_alive[u] = false;
