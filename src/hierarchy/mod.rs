@@ -16,9 +16,11 @@
 //! 4. **Lift** ([`crate::maps::proxy`]'s local trilateration): a fine vertex is placed relative
 //!    to the images of its cell's coarse vertex and that vertex's coarse neighbours, preserving
 //!    its straight distances to them, by greedy descent on the fine mesh.
+//! 5. **Judge** ([`crate::judge`]) of the lifted maps on the fine mesh (its 600 stencils), which
+//!    ranks them as a mesh's own maps are ranked.
 //!
-//! What is computed at full resolution: only the cells and the lift (O(n log n) and O(n)),
-//! and the outputs themselves (maps and confidences). No eigenpair, descriptor or dense `n × k`
+//! What is computed at full resolution: only the cells, the lift (O(n log n) and O(n)), the
+//! judge's stencils and the outputs themselves (maps and confidences). No eigenpair, descriptor or dense `n × k`
 //! matrix of the fine mesh is ever formed, so memory grows linearly with the vertices. The
 //! functional map and complexity reported for a symmetry are those of the coarse mesh's
 //! basis. A map's precision is that of the coarse map plus the lift's interpolation (the cell
