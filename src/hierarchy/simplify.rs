@@ -15,6 +15,7 @@
 //! vertices (instead of the optimal position) costs a little quadric error and makes the
 //! coarse mesh's vertices exact seeds for lifting maps back (`super`).
 
+use crate::mesh::vec3::{cross, dot, sub};
 use crate::mesh::Mesh;
 
 /// Weight of the edge-length term `β |e|⁴` added to the quadric cost of a collapse (on the
@@ -51,16 +52,6 @@ impl Quadric {
         let [x, y, z] = p;
         q[0] * x * x + 2.0 * q[1] * x * y + 2.0 * q[2] * x * z + 2.0 * q[3] * x + q[4] * y * y + 2.0 * q[5] * y * z + 2.0 * q[6] * y + q[7] * z * z + 2.0 * q[8] * z + q[9]
     }
-}
-
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
-}
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 /// The sorted neighbours of `v` through its live faces.

@@ -35,6 +35,7 @@
 //! first reported symmetry was right on 37.6% mean acc@0.05, the soft factor 42.3% (other
 //! datasets unchanged; halving at `δ_max/4` or `δ_max` gave the same rankings).
 
+use crate::mesh::vec3::{cross, dot, norm, sub};
 use crate::mesh::Mesh;
 
 /// Parameters of the judge.
@@ -99,19 +100,6 @@ pub struct Judge {
     /// `(v, a, b)` with `s(v, a, b) = +1`.
     stencils: Vec<[u32; 3]>,
     fixed_radius: f64,
-}
-
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
-}
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-fn norm(a: [f64; 3]) -> f64 {
-    dot(a, a).sqrt()
 }
 
 /// Area-weighted unit vertex normals of a mesh, its triangles consistently oriented first

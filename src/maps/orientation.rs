@@ -32,6 +32,7 @@ use faer::linalg::matmul::matmul;
 use faer::linalg::solvers::Solve;
 use faer::{Accum, Mat, Par, Side};
 
+use crate::mesh::vec3::{cross, sub};
 use crate::mesh::Mesh;
 use crate::spectral::Eigenbasis;
 
@@ -60,13 +61,6 @@ impl Default for OrientationParams {
     fn default() -> Self {
         OrientationParams { k: 30, descriptors: 12, w_descr: 1.0, w_lap: 1e-2, w_dcomm: 1e-1, w_orient: 1.0 }
     }
-}
-
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
 }
 
 /// Per face: area, unit normal and the gradients of the three hat functions.

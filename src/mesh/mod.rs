@@ -23,10 +23,13 @@
 //! every result are those of the input arrays ([`Mesh::input_index`] maps back).
 
 pub mod io;
+pub(crate) mod vec3;
 
 pub use io::{read_mesh, write_off, IoError, RawMesh};
 
 use std::fmt;
+
+use vec3::{cross, dot, norm, sub};
 
 /// What to do with a mesh that has several connected components.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -561,7 +564,7 @@ impl Mesh {
         for t in triangles {
             let [a, b, c] = t.map(|i| self.vertices[i as usize]);
             let (e1, e2) = (sub(b, a), sub(c, a));
-            let cr = [e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]];
+            let cr = cross(e1, e2);
             for &i in t {
                 for d in 0..3 {
                     normals[i as usize][d] += cr[d];
@@ -728,12 +731,8 @@ fn outlier(vertices: &[[f64; 3]]) -> Option<MeshError> {
     (largest > 1e12 * typical).then_some(MeshError::Outlier { vertex, magnitude: largest, typical })
 }
 
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
 fn norm_sq(a: [f64; 3]) -> f64 {
-    a[0] * a[0] + a[1] * a[1] + a[2] * a[2]
+    dot(a, a)
 }
 
 /// Area of triangle `t` of `v`.
@@ -741,8 +740,7 @@ pub(crate) fn triangle_area(v: &[[f64; 3]], t: &[u32; 3]) -> f64 {
     let p = v[t[0] as usize];
     let a = sub(v[t[1] as usize], p);
     let b = sub(v[t[2] as usize], p);
-    let c = [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
-    0.5 * norm_sq(c).sqrt()
+    0.5 * norm(cross(a, b))
 }
 
 fn longest_edge_sq(v: &[[f64; 3]], t: &[u32; 3]) -> f64 {

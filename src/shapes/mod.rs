@@ -14,6 +14,7 @@
 //!
 //! Every function returns a validated [`Mesh`].
 
+use crate::mesh::vec3::{cross, dot, norm};
 use crate::mesh::{Mesh, MeshParams};
 
 fn build(vertices: Vec<[f64; 3]>, triangles: Vec<[u32; 3]>) -> Mesh {
@@ -67,7 +68,7 @@ pub fn torus_of_revolution(nu: usize, nv: usize, minor: f64) -> Mesh {
 }
 
 fn normalize(p: [f64; 3]) -> [f64; 3] {
-    let r = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
+    let r = norm(p);
     [p[0] / r, p[1] / r, p[2] / r]
 }
 
@@ -212,10 +213,6 @@ pub struct Creature {
     pub rest: Vec<[f64; 3]>,
 }
 
-fn dot3(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
 fn smoothstep(t: f64) -> f64 {
     let t = t.clamp(0.0, 1.0);
     t * t * (3.0 - 2.0 * t)
@@ -225,8 +222,8 @@ fn smoothstep(t: f64) -> f64 {
 fn rotate(p: [f64; 3], c: [f64; 3], k: [f64; 3], angle: f64) -> [f64; 3] {
     let v = [p[0] - c[0], p[1] - c[1], p[2] - c[2]];
     let (s, co) = angle.sin_cos();
-    let kv = dot3(k, v);
-    let cr = [k[1] * v[2] - k[2] * v[1], k[2] * v[0] - k[0] * v[2], k[0] * v[1] - k[1] * v[0]];
+    let kv = dot(k, v);
+    let cr = cross(k, v);
     std::array::from_fn(|d| c[d] + v[d] * co + cr[d] * s + k[d] * kv * (1.0 - co))
 }
 
@@ -243,7 +240,7 @@ pub fn creature(level: u32, body: [f64; 3], limbs: &[Limb], noise: f64, seed: u6
     for (v, &u) in sphere.iter().enumerate() {
         let mut p = [body[0] * u[0], body[1] * u[1], body[2] * u[2]];
         for (j, l) in limbs.iter().enumerate() {
-            let theta = dot3(u, l.direction).clamp(-1.0, 1.0).acos();
+            let theta = dot(u, l.direction).clamp(-1.0, 1.0).acos();
             let t = theta / l.cap;
             if t < 1.0 {
                 let grow = l.length * (1.0 - smoothstep(t));
