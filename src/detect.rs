@@ -451,19 +451,8 @@ fn detect_part(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bo
     };
     for (s, dense) in det.symmetries.iter_mut().zip(lifted) {
         s.verdict = judge.judge(&dense.map, s.distortion, params.max_distortion);
-        let mut map = vec![-1i64; mesh.info.input_vertices];
-        let mut confidence = vec![0.0; mesh.info.input_vertices];
-        for v in 0..n {
-            if dense.map[v] >= 0 {
-                map[mesh.input_index[v] as usize] = mesh.input_index[dense.map[v] as usize] as i64;
-                confidence[mesh.input_index[v] as usize] = dense.confidence[v];
-            }
-        }
-        for &(v, kept) in &mesh.welded {
-            map[v as usize] = map[kept as usize];
-            confidence[v as usize] = confidence[kept as usize];
-        }
-        (s.map, s.confidence, s.region_size) = (map, confidence, dense.region_size);
+        (s.map, s.confidence) = in_input_indices(mesh, &dense);
+        s.region_size = dense.region_size;
         (s.source, s.target) = (fine(s.source), fine(s.target));
         for pair in &mut s.support_pairs {
             *pair = (fine(pair.0), fine(pair.1));
@@ -546,11 +535,7 @@ fn several(whole: &Mesh, parts: &[Mesh], params: &Params, progress: &mut dyn FnM
     }
     ranked.sort_by(|x, y| y.0.total_cmp(&x.0));
     let mut symmetries: Vec<Symmetry> = ranked.into_iter().map(|(_, s)| s).take(params.max_symmetries).collect();
-    let n = whole.num_vertices();
-    let features: Vec<Vec<f64>> = symmetries.iter().map(|s| vec![s.complexity, if s.order > 0 { 1.0 / s.order as f64 } else { 0.0 }, s.region_size as f64 / n as f64]).collect();
-    for (s, g) in symmetries.iter_mut().zip(cluster::cluster(&features, params.groups)) {
-        s.group = g;
-    }
+    group(&mut symmetries, whole.num_vertices(), params.groups);
     let mut timings = Timings::default();
     for r in &results {
         timings.accumulate(&r.det.timings);
@@ -1086,19 +1071,7 @@ fn report(mesh: &Mesh, mesh_judge: &Judge, mut found: Vec<Found>, emb: &crate::d
             let order = characterize::order(&f.dense.map, probes, emb, order_tol, params.max_order);
             let kind = if f.dense.global { Kind::Global } else { Kind::Partial };
             let to_input = |v: usize| mesh.input_index[v] as usize;
-            let mut map = vec![-1i64; mesh.info.input_vertices];
-            let mut confidence = vec![0.0; mesh.info.input_vertices];
-            for v in 0..n {
-                if f.dense.map[v] >= 0 {
-                    map[to_input(v)] = to_input(f.dense.map[v] as usize) as i64;
-                    confidence[to_input(v)] = f.dense.confidence[v];
-                }
-            }
-            // A welded vertex is where the vertex it was welded to is.
-            for &(v, kept) in &mesh.welded {
-                map[v as usize] = map[kept as usize];
-                confidence[v as usize] = confidence[kept as usize];
-            }
+            let (map, confidence) = in_input_indices(mesh, &f.dense);
             Symmetry {
                 source: to_input(f.seed.0),
                 target: to_input(f.seed.1),
@@ -1120,21 +1093,38 @@ fn report(mesh: &Mesh, mesh_judge: &Judge, mut found: Vec<Found>, emb: &crate::d
     timings.characterize = t.elapsed().as_secs_f64();
 
     let t = Instant::now();
-    let features: Vec<Vec<f64>> = symmetries
-        .iter()
-        .map(|s| {
-            vec![
-                s.complexity,
-                if s.order > 0 { 1.0 / s.order as f64 } else { 0.0 },
-                s.region_size as f64 / n as f64,
-            ]
-        })
-        .collect();
-    for (s, g) in symmetries.iter_mut().zip(cluster::cluster(&features, params.groups)) {
-        s.group = g;
-    }
+    group(&mut symmetries, n, params.groups);
     timings.cluster = t.elapsed().as_secs_f64();
     symmetries
+}
+
+/// Labels the symmetries of a mesh of `n` processed vertices with their groups: k-means on
+/// (complexity, 1/order, region fraction), `groups` of them or chosen by silhouette.
+fn group(symmetries: &mut [Symmetry], n: usize, groups: Option<usize>) {
+    let features: Vec<Vec<f64>> = symmetries.iter().map(|s| vec![s.complexity, if s.order > 0 { 1.0 / s.order as f64 } else { 0.0 }, s.region_size as f64 / n as f64]).collect();
+    for (s, g) in symmetries.iter_mut().zip(cluster::cluster(&features, groups)) {
+        s.group = g;
+    }
+}
+
+/// A map of `mesh`'s vertices (`dense`) and its confidences in the indices of the input arrays
+/// (−1 and 0 where the input vertex was not processed); a welded vertex is where the vertex it
+/// was welded to is.
+fn in_input_indices(mesh: &Mesh, dense: &maps::DenseMap) -> (Vec<i64>, Vec<f64>) {
+    let to_input = |v: usize| mesh.input_index[v] as usize;
+    let mut map = vec![-1i64; mesh.info.input_vertices];
+    let mut confidence = vec![0.0; mesh.info.input_vertices];
+    for v in 0..mesh.num_vertices() {
+        if dense.map[v] >= 0 {
+            map[to_input(v)] = to_input(dense.map[v] as usize) as i64;
+            confidence[to_input(v)] = dense.confidence[v];
+        }
+    }
+    for &(v, kept) in &mesh.welded {
+        map[v as usize] = map[kept as usize];
+        confidence[v as usize] = confidence[kept as usize];
+    }
+    (map, confidence)
 }
 
 /// The hypotheses phase's second generator: the orientation-reversing functional map from the
