@@ -71,10 +71,16 @@ pub fn order(map: &[i64], probes: &[usize], emb: &BiharmonicEmbedding, tol: f64,
 
 /// Mean `|d(x,y) − d(Tx,Ty)|` over pairs of anchors, divided by `diameter`.
 pub fn distortion(anchors: &[(usize, usize)], emb: &BiharmonicEmbedding, diameter: f64) -> f64 {
+    distortion_between(anchors, emb, emb, diameter)
+}
+
+/// [`distortion`] of a map between two shapes: `d` of the sources in `src_emb`, of the
+/// targets in `dst_emb` (the same embedding for a self-map).
+pub fn distortion_between(anchors: &[(usize, usize)], src_emb: &BiharmonicEmbedding, dst_emb: &BiharmonicEmbedding, diameter: f64) -> f64 {
     let src: Vec<usize> = anchors.iter().map(|a| a.0).collect();
     let dst: Vec<usize> = anchors.iter().map(|a| a.1).collect();
-    let ds = emb.between(&src, &src);
-    let dt = emb.between(&dst, &dst);
+    let ds = src_emb.between(&src, &src);
+    let dt = dst_emb.between(&dst, &dst);
     let mut sum = 0.0;
     let mut count = 0;
     for i in 0..src.len() {

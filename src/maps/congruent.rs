@@ -27,7 +27,8 @@
 //! **Judging.** The mean change of biharmonic distances between farthest-point samples of the
 //! source and their images, over the source's biharmonic diameter — the distortion the rest of
 //! the pipeline uses ([`crate::characterize::distortion`]), here across two embeddings (both of
-//! unit-area copies, so their distances are comparable) — the worse of the two directions. The
+//! unit-area copies, so their distances are comparable; [`crate::characterize::distortion_between`])
+//! — the worse of the two directions. The
 //! type with the lower distortion is kept, if it is below the pipeline's `max_distortion`.
 
 use faer::Mat;
@@ -144,18 +145,11 @@ impl<'a> Side<'a> {
 
     /// Mean `|d_src(x, y) − d_dst(T x, T y)|` over the samples' pairs, over the diameter.
     fn distortion(&self, dst: &Side<'_>, map: &[usize]) -> f64 {
-        let s = &self.samples;
-        let (mut total, mut count) = (0.0, 0usize);
-        for (i, &x) in s.iter().enumerate() {
-            for &y in &s[i + 1..] {
-                total += (self.part.emb.dist(x, y) - dst.part.emb.dist(map[x], map[y])).abs();
-                count += 1;
-            }
-        }
-        if count == 0 || self.diameter.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
+        if self.samples.len() < 2 || self.diameter.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
             return f64::INFINITY;
         }
-        total / count as f64 / self.diameter
+        let anchors: Vec<(usize, usize)> = self.samples.iter().map(|&x| (x, map[x])).collect();
+        crate::characterize::distortion_between(&anchors, self.part.emb, dst.part.emb, self.diameter)
     }
 }
 
