@@ -357,11 +357,10 @@ pub fn detect(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
     };
     // Centred, unit area: results do not depend on units or position (`Mesh::normalized`).
     let (mesh, _) = mesh.normalized();
-    let parts = mesh.components();
-    if parts.len() == 1 {
-        return crate::parallel::on_pool(&mut flagged, |relay| detect_part(&mesh, params, relay).map(|p| p.det));
+    match mesh.split_components() {
+        None => crate::parallel::on_pool(&mut flagged, |relay| detect_part(mesh, params, relay).map(|p| p.det)),
+        Some(parts) => crate::parallel::on_pool(&mut flagged, |relay| several(&mesh, &parts, params, relay)),
     }
-    crate::parallel::on_pool(&mut flagged, |relay| several(&mesh, &parts, params, relay))
 }
 
 /// What a component's pipeline computed that the congruence stage reuses.
@@ -385,13 +384,13 @@ struct PartResult {
 /// coarse mesh with the maps lifted back ([`crate::hierarchy`]). When the coarse mesh cannot be
 /// built (a mesh so irregular that its simplification is not a valid mesh) the component is
 /// detected at full resolution.
-fn detect_part(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool) -> Result<PartResult, Error> {
+fn detect_part(mesh: Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool) -> Result<PartResult, Error> {
     let n = mesh.num_vertices();
     let t = Instant::now();
     // The simplification has the first 10% of the progress, the coarse detection the next
     // 80%, the lift the rest.
     let built = if crate::hierarchy::wanted(n, params.hierarchy_vertices) {
-        match Hierarchy::with_progress(mesh, params.hierarchy_vertices, &mut |f| progress(0.1 * f)) {
+        match Hierarchy::with_progress(&mesh, params.hierarchy_vertices, &mut |f| progress(0.1 * f)) {
             Ok(h) => Some(h),
             Err(crate::hierarchy::HierarchyError::Cancelled) => return Err(Error::Cancelled { stage: "hierarchy" }),
             Err(crate::hierarchy::HierarchyError::Mesh(_)) => None,
@@ -400,8 +399,8 @@ fn detect_part(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bo
         None
     };
     let Some(h) = built else {
-        let (det, spectral) = pipeline(mesh, params, progress)?;
-        return Ok(PartResult { det, spectral, domain: mesh.clone(), hierarchy: None });
+        let (det, spectral) = pipeline(&mesh, params, progress)?;
+        return Ok(PartResult { det, spectral, domain: mesh, hierarchy: None });
     };
     let building = t.elapsed().as_secs_f64();
     if !progress(0.1) {
@@ -451,7 +450,7 @@ fn detect_part(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bo
     };
     for (s, dense) in det.symmetries.iter_mut().zip(lifted) {
         s.verdict = judge.judge(&dense.map, s.distortion, params.max_distortion);
-        (s.map, s.confidence) = in_input_indices(mesh, &dense);
+        (s.map, s.confidence) = in_input_indices(&mesh, &dense);
         s.region_size = dense.region_size;
         (s.source, s.target) = (fine(s.source), fine(s.target));
         for pair in &mut s.support_pairs {
@@ -491,15 +490,16 @@ fn several(whole: &Mesh, parts: &[Mesh], params: &Params, progress: &mut dyn FnM
         let (lo, hi) = (0.9 * done as f64 / total_vertices as f64, 0.9 * (done + part.num_vertices()) as f64 / total_vertices as f64);
         done += part.num_vertices();
         let (unit, _) = part.normalized();
-        results.push(detect_part(&unit, params, &mut |f| progress(lo + (hi - lo) * f))?);
+        results.push(detect_part(unit, params, &mut |f| progress(lo + (hi - lo) * f))?);
     }
     // Phase 2: maps between congruent components, on the meshes their spectra belong to.
     let t = Instant::now();
-    let shares: Vec<f64> = parts.iter().map(|p| p.area() / total_area).collect();
+    let areas: Vec<f64> = parts.iter().map(Mesh::area).collect();
+    let shares: Vec<f64> = areas.iter().map(|a| a / total_area).collect();
     let views: Vec<maps::congruent::Part<'_>> = results
         .iter()
-        .zip(parts)
-        .map(|(r, part)| maps::congruent::Part { mesh: &r.domain, basis: &r.spectral.basis, desc: &r.spectral.desc, emb: &r.spectral.emb, area: part.area() })
+        .zip(&areas)
+        .map(|(r, &area)| maps::congruent::Part { mesh: &r.domain, basis: &r.spectral.basis, desc: &r.spectral.desc, emb: &r.spectral.emb, area })
         .collect();
     let cparams = maps::congruent::CongruentParams::default();
     let pairs: Vec<(usize, usize)> = (0..parts.len()).flat_map(|a| (a + 1..parts.len()).map(move |b| (a, b))).filter(|&(a, b)| maps::congruent::congruent(&views[a], &views[b], &cparams)).collect();
@@ -514,14 +514,9 @@ fn several(whole: &Mesh, parts: &[Mesh], params: &Params, progress: &mut dyn FnM
     }
     let congruence = t.elapsed().as_secs_f64();
     // Phase 3: one report.
-    let judge = {
-        let oriented = whole.oriented_triangles();
-        Judge::new(&whole.vertices, whole.vertex_normals(&oriented), &whole.adjacency(), total_area.sqrt(), &params.judge)
-    };
     let mut ranked: Vec<(f64, Symmetry)> = Vec::new();
-    for (c, r) in results.iter().enumerate() {
-        for s in &r.det.symmetries {
-            let mut s = s.clone();
+    for (c, r) in results.iter_mut().enumerate() {
+        for mut s in std::mem::take(&mut r.det.symmetries) {
             s.components = [c, c];
             if shares[c] < params.maps.global_fraction {
                 s.kind = Kind::Partial;
@@ -529,9 +524,14 @@ fn several(whole: &Mesh, parts: &[Mesh], params: &Params, progress: &mut dyn FnM
             ranked.push((s.verdict.score * shares[c], s));
         }
     }
-    for (a, b, m) in &swaps {
-        let s = swap(whole, (&parts[*a], &parts[*b]), (&results[*a], &results[*b]), [*a, *b], m, &judge, params, shares[*a] + shares[*b]);
-        ranked.push((s.verdict.score, s));
+    // The swaps are judged on the whole mesh (its judge built only for them).
+    if !swaps.is_empty() {
+        let oriented = whole.oriented_triangles();
+        let judge = Judge::new(&whole.vertices, whole.vertex_normals(&oriented), &whole.adjacency(), total_area.sqrt(), &params.judge);
+        for (a, b, m) in &swaps {
+            let s = swap(whole, (&parts[*a], &parts[*b]), (&results[*a], &results[*b]), [*a, *b], m, &judge, params, shares[*a] + shares[*b]);
+            ranked.push((s.verdict.score, s));
+        }
     }
     ranked.sort_by(|x, y| y.0.total_cmp(&x.0));
     let mut symmetries: Vec<Symmetry> = ranked.into_iter().map(|(_, s)| s).take(params.max_symmetries).collect();

@@ -17,7 +17,7 @@
 //! | zero-area (collinear or collapsed) triangles | **kept** and counted in [`MeshInfo::degenerate_triangles`]: the Laplacian is built on intrinsically mollified edge lengths (Sharp & Crane 2020), so they get a tiny positive area and finite cotangents; dropping them would punch holes |
 //! | every triangle degenerate (zero total area) | error [`MeshError::Degenerate`] |
 //! | vertices used by no triangle | **ignored** (not part of the computation; results mark them "no image", confidence 0), counted in [`MeshInfo::isolated_vertices`] |
-//! | several connected components | by default **every component of at least [`MIN_COMPONENT_SHARE`] of the largest one's area** is kept ([`ComponentPolicy::Each`]; smaller ones are reported as ignored vertices); detection processes each kept component on its own ([`Mesh::components`]) and maps congruent components onto each other (`crate::maps::congruent`). [`ComponentPolicy::Largest`] keeps the largest only; [`ComponentPolicy::Reject`] makes it error [`MeshError::Disconnected`]. Intrinsic symmetry is defined per connected surface: the spectrum of a disconnected surface mixes the components' spectra, so no eigenbasis is ever computed on several components at once |
+//! | several connected components | by default **every component of at least [`MIN_COMPONENT_SHARE`] of the largest one's area** is kept ([`ComponentPolicy::Each`]; smaller ones are reported as ignored vertices); detection processes each kept component on its own ([`Mesh::split_components`]) and maps congruent components onto each other (`crate::maps::congruent`). [`ComponentPolicy::Largest`] keeps the largest only; [`ComponentPolicy::Reject`] makes it error [`MeshError::Disconnected`]. Intrinsic symmetry is defined per connected surface: the spectrum of a disconnected surface mixes the components' spectra, so no eigenbasis is ever computed on several components at once |
 //!
 //! Polygon faces in files are fan-triangulated by the readers in [`io`]; vertex indices in
 //! every result are those of the input arrays ([`Mesh::input_index`] maps back).
@@ -400,9 +400,9 @@ impl Mesh {
 
     /// The connected components of this mesh as meshes of their own, largest area first (ties
     /// by their first vertex), each with [`Mesh::input_index`] and [`Mesh::welded`] still in the
-    /// indices of the input arrays and this mesh's [`MeshInfo`]. One component: a copy of this
-    /// mesh.
-    pub fn components(&self) -> Vec<Mesh> {
+    /// indices of the input arrays and this mesh's [`MeshInfo`]; `None` when the mesh is one
+    /// connected surface (nothing to split, and no copy made).
+    pub fn split_components(&self) -> Option<Vec<Mesh>> {
         let n = self.num_vertices();
         let mut uf = UnionFind::new(n);
         for t in &self.triangles {
@@ -420,7 +420,7 @@ impl Mesh {
             }
         }
         if roots.len() <= 1 {
-            return vec![self.clone()];
+            return None;
         }
         let mut area = vec![0.0; roots.len()];
         for t in &self.triangles {
@@ -458,7 +458,7 @@ impl Mesh {
                 parts[c].welded.push((v, kept));
             }
         }
-        parts
+        Some(parts)
     }
 
     /// This mesh centred on its bounding box's centre and scaled to unit area, and the scale
@@ -998,7 +998,7 @@ mod tests {
         t2.extend(t.iter().map(|f| f.map(|i| i + 4)));
         let m = Mesh::new(v2.clone(), t2.clone(), &MeshParams::default()).unwrap();
         assert_eq!((m.info.components, m.info.kept_components, m.info.ignored_component_vertices), (2, 2, 0));
-        let parts = m.components();
+        let parts = m.split_components().expect("two components");
         assert_eq!(parts.len(), 2);
         // Largest first, input indices kept.
         assert_eq!(parts[0].input_index, vec![0, 1, 2, 3]);
@@ -1008,7 +1008,7 @@ mod tests {
         let largest = Mesh::new(v2.clone(), t2.clone(), &MeshParams { components: ComponentPolicy::Largest, ..Default::default() }).unwrap();
         assert_eq!((largest.info.kept_components, largest.info.ignored_component_vertices), (1, 4));
         assert_eq!(largest.input_index, vec![0, 1, 2, 3]);
-        assert_eq!(largest.components().len(), 1);
+        assert!(largest.split_components().is_none());
         // A component under MIN_COMPONENT_SHARE of the largest one's area is ignored.
         let mut v3 = v2.clone();
         for p in &mut v3[4..] {
