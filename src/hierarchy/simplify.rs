@@ -15,6 +15,7 @@
 //! vertices (instead of the optimal position) costs a little quadric error and makes the
 //! coarse mesh's vertices exact seeds for lifting maps back (`super`).
 
+use crate::mesh::sorted_edge_keys;
 use crate::mesh::vec3::{cross, dot, sub};
 use crate::mesh::Mesh;
 
@@ -161,8 +162,7 @@ pub fn simplify_with_progress(mesh: &Mesh, target: usize, progress: &mut dyn FnM
         }
     }
     // Edge use counts: boundary (1) and non-manifold (> 2) edges.
-    let mut edges: Vec<(u32, u32)> = faces.iter().flat_map(|t| (0..3).map(move |k| (t[k].min(t[(k + 1) % 3]), t[k].max(t[(k + 1) % 3])))).collect();
-    edges.sort_unstable();
+    let edges = sorted_edge_keys(&faces);
     let mut boundary = vec![false; n];
     let mut locked = vec![false; n];
     let mut quadric = vec![Quadric::default(); n];
@@ -184,7 +184,7 @@ pub fn simplify_with_progress(mesh: &Mesh, target: usize, progress: &mut dyn FnM
         while j < edges.len() && edges[j] == edges[i] {
             j += 1;
         }
-        let (a, b) = (edges[i].0 as usize, edges[i].1 as usize);
+        let (a, b) = ((edges[i] >> 32) as usize, (edges[i] & 0xffff_ffff) as usize);
         match j - i {
             1 => {
                 boundary[a] = true;
@@ -345,8 +345,7 @@ mod tests {
     fn a_closed_surface_keeps_its_topology() {
         for mesh in [shapes::quadruped(5, Pose::Walking, 0.0, 0).mesh, shapes::torus_of_revolution(120, 60, 0.3)] {
             let chi = |v: usize, t: &[[u32; 3]]| {
-                let mut e: Vec<(u32, u32)> = t.iter().flat_map(|t| (0..3).map(move |k| (t[k].min(t[(k + 1) % 3]), t[k].max(t[(k + 1) % 3])))).collect();
-                e.sort_unstable();
+                let mut e = sorted_edge_keys(t);
                 e.dedup();
                 v as i64 - e.len() as i64 + t.len() as i64
             };
@@ -356,8 +355,7 @@ mod tests {
             assert!(s.triangles.iter().flatten().all(|&i| (i as usize) < s.kept.len()));
             assert_eq!(chi(s.kept.len(), &s.triangles), before);
             // Every edge still has two faces (closed, manifold).
-            let mut e: Vec<(u32, u32)> = s.triangles.iter().flat_map(|t| (0..3).map(move |k| (t[k].min(t[(k + 1) % 3]), t[k].max(t[(k + 1) % 3])))).collect();
-            e.sort_unstable();
+            let e = sorted_edge_keys(&s.triangles);
             assert!(e.chunks(2).all(|c| c.len() == 2 && c[0] == c[1]) && e.windows(3).all(|w| !(w[0] == w[1] && w[1] == w[2])));
         }
     }

@@ -748,7 +748,9 @@ fn longest_edge_sq(v: &[[f64; 3]], t: &[u32; 3]) -> f64 {
     norm_sq(sub(a, b)).max(norm_sq(sub(b, c))).max(norm_sq(sub(c, a)))
 }
 
-fn sorted_edge_keys(triangles: &[[u32; 3]]) -> Vec<u64> {
+/// Every triangle's edges as keys `(min << 32) | max`, sorted: an edge appears once per
+/// triangle that uses it (once on a boundary, more than twice where it is non-manifold).
+pub(crate) fn sorted_edge_keys(triangles: &[[u32; 3]]) -> Vec<u64> {
     let mut keys: Vec<u64> = Vec::with_capacity(3 * triangles.len());
     for t in triangles {
         for k in 0..3 {
