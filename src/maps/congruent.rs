@@ -119,8 +119,6 @@ impl<'a> Side<'a> {
     fn new(part: &'a Part<'a>, maps: &MapParams, params: &CongruentParams) -> Option<Side<'a>> {
         let mesh = part.mesh;
         let ops = orientation::operators(mesh, &mesh.oriented_triangles(), part.basis, part.desc, &maps.orientation)?;
-        let n = mesh.num_vertices();
-        let step = n.div_ceil(maps.search_vertices.max(1)).max(1);
         let samples = farthest_point(part.emb, params.samples, 0).vertices;
         let diameter = samples.iter().flat_map(|&x| samples.iter().map(move |&y| (x, y))).map(|(x, y)| part.emb.dist(x, y)).fold(0.0, f64::max);
         Some(Side {
@@ -128,7 +126,7 @@ impl<'a> Side<'a> {
             ops,
             adjacency: mesh.adjacency(),
             zoom: ZoomBasis::new(part.basis, maps.zoomout_k.max(1)),
-            search: (0..n).step_by(step).collect(),
+            search: super::search_subset(mesh.num_vertices(), maps),
             samples,
             diameter,
         })

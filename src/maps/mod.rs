@@ -183,11 +183,9 @@ impl<'a> Context<'a> {
         diameter: f64,
         params: &MapParams,
     ) -> Self {
-        let n = positions.len();
-        let stride = (n / params.search_vertices.max(1)).max(1);
         let energies = wks.ncols();
         let rows = row_major(wks.as_ref(), energies);
-        Context { positions, emb, adjacency, diameter, search: (0..n).step_by(stride).collect(), wks: rows, energies, basis: None, judge: None, zoom: Default::default(), samples: Default::default(), zoom_size: params.zoomout_k }
+        Context { positions, emb, adjacency, diameter, search: search_subset(positions.len(), params), wks: rows, energies, basis: None, judge: None, zoom: Default::default(), samples: Default::default(), zoom_size: params.zoomout_k }
     }
 
     /// Number of vertices.
@@ -275,6 +273,12 @@ fn nearest_profile(dist: impl Fn(usize) -> f64, candidates: impl IntoIterator<It
         out.select_nth_unstable_by_key(k - 1, |a| a.1.to_bits());
         out.truncate(k);
     }
+}
+
+/// The coarse search's vertices: about `search_vertices` of `n`, evenly strided.
+pub(crate) fn search_subset(n: usize, params: &MapParams) -> Vec<usize> {
+    let stride = (n / params.search_vertices.max(1)).max(1);
+    (0..n).step_by(stride).collect()
 }
 
 /// The first `cols` columns of `m` `(n, ≥ cols)` in row-major order (a row's entries
