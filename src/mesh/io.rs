@@ -130,28 +130,22 @@ fn text_lines(mut reader: impl BufRead) -> impl Iterator<Item = Result<(usize, S
 /// record after the counted faces is an error: the counts in the header are wrong, and faces
 /// would be dropped silently (issue 16, item 5).
 pub fn read_off(reader: impl BufRead) -> Result<RawMesh, LineError> {
-    // Tokens with their line numbers, comments stripped.
-    let mut tokens = Vec::new();
-    for line in text_lines(reader) {
-        let (number, line) = line?;
-        let line = line.split('#').next().unwrap_or("");
-        tokens.extend(line.split_whitespace().map(|t| (number, t.to_owned())));
-    }
-    // Group tokens back into lines: vertex and face records are one per line.
-    let mut lines: Vec<(usize, Vec<String>)> = Vec::new();
-    for (l, t) in tokens {
-        match lines.last_mut() {
-            Some((ll, v)) if *ll == l => v.push(t),
-            _ => lines.push((l, vec![t])),
+    // Records are the non-empty lines, comments stripped; parsed as they are read (a token list
+    // of the whole file took seconds and gigabytes on 10⁶ vertices).
+    let mut records = text_lines(reader).filter_map(|line| match line {
+        Ok((number, line)) => {
+            let record = line.split('#').next().unwrap_or("");
+            let tokens: Vec<String> = record.split_whitespace().map(str::to_owned).collect();
+            (!tokens.is_empty()).then_some(Ok((number, tokens)))
         }
-    }
-    let mut it = lines.into_iter();
-    let (l0, mut first) = it.next().ok_or((None, "empty file".to_string()))?;
+        Err(e) => Some(Err(e)),
+    });
+    let (l0, mut first) = records.next().ok_or((None, "empty file".to_string()))??;
     if !first[0].ends_with("OFF") {
         return Err((Some(l0), "missing OFF header".into()));
     }
     first.remove(0);
-    let counts = if first.is_empty() { it.next().ok_or((None, "missing counts".to_string()))? } else { (l0, first) };
+    let counts = if first.is_empty() { records.next().ok_or((None, "missing counts".to_string()))?? } else { (l0, first) };
     let num = |s: &str, l: usize| s.parse::<i64>().map_err(|_| (Some(l), format!("expected an integer, got {s:?}")));
     if counts.1.len() < 2 {
         return Err((Some(counts.0), "expected vertex and face counts".into()));
@@ -162,8 +156,11 @@ pub fn read_off(reader: impl BufRead) -> Result<RawMesh, LineError> {
         return Err((Some(counts.0), "negative count".into()));
     }
     let mut mesh = RawMesh::default();
+    // Capacity from the header, bounded: a wrong count must not allocate gigabytes.
+    mesh.vertices.reserve((nv as usize).min(1 << 24));
+    mesh.triangles.reserve((nf as usize).min(1 << 25));
     for _ in 0..nv {
-        let (l, rec) = it.next().ok_or((None, format!("file ends before its {nv} vertices")))?;
+        let (l, rec) = records.next().ok_or((None, format!("file ends before its {nv} vertices")))??;
         if rec.len() < 3 {
             return Err((Some(l), "vertex needs 3 coordinates".into()));
         }
@@ -173,19 +170,21 @@ pub fn read_off(reader: impl BufRead) -> Result<RawMesh, LineError> {
         }
         mesh.vertices.push(p);
     }
+    let mut poly = Vec::new();
     for _ in 0..nf {
-        let (l, rec) = it.next().ok_or((None, format!("file ends before its {nf} faces")))?;
+        let (l, rec) = records.next().ok_or((None, format!("file ends before its {nf} faces")))??;
         let k = num(&rec[0], l)?;
         if k < 0 || rec.len() < 1 + k as usize {
             return Err((Some(l), "face record shorter than its vertex count".into()));
         }
-        let poly = rec[1..=k as usize]
-            .iter()
-            .map(|s| num(s, l).and_then(|x| to_index(x, l)))
-            .collect::<Result<Vec<_>, _>>()?;
+        poly.clear();
+        for s in &rec[1..=k as usize] {
+            poly.push(num(s, l).and_then(|x| to_index(x, l))?);
+        }
         push_polygon(&mut mesh.triangles, &poly).map_err(|m| (Some(l), m))?;
     }
-    if let Some((l, _)) = it.next() {
+    if let Some(record) = records.next() {
+        let (l, _) = record?;
         return Err((Some(l), format!("a record after the {nf} faces the header counts: the header's counts are wrong (faces would be lost)")));
     }
     Ok(mesh)
