@@ -431,15 +431,17 @@ fn detect_part(mesh: Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
         };
         h.lift(&mesh.vertices, &dense)
     };
-    // In rounds of as many maps as cores, with a progress call (and a chance to cancel)
-    // between rounds: a map's lift takes seconds on a 10⁶-vertex mesh.
+    // One map at a time (each lift runs on all cores, cell by cell), with a progress call (and
+    // a chance to cancel) between maps: a lift takes about half a second on 10⁶ vertices.
     let mut lifted = Vec::with_capacity(det.symmetries.len());
-    let cores = crate::parallel::cores();
-    for (i, round) in det.symmetries.chunks(cores).enumerate() {
-        if !progress(0.9 + 0.1 * (i * cores) as f64 / det.symmetries.len() as f64) {
+    for (i, s) in det.symmetries.iter().enumerate() {
+        if !progress(0.9 + 0.07 * i as f64 / det.symmetries.len() as f64) {
             return Err(Error::Cancelled { stage: "lift" });
         }
-        lifted.extend(crate::parallel::map(round, lift_one));
+        lifted.push(lift_one(s));
+    }
+    if !progress(0.97) {
+        return Err(Error::Cancelled { stage: "lift" });
     }
     let fine = |i: usize| mesh.input_index[h.seeds[to_coarse[i]]] as usize;
     // The judge on the fine mesh (the maps are reported there): ranks the lifted maps, as
@@ -448,7 +450,11 @@ fn detect_part(mesh: Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
         let oriented = mesh.oriented_triangles();
         Judge::new(&mesh.vertices, mesh.vertex_normals(&oriented), &h.fine_adjacency, mesh.area().sqrt(), &params.judge)
     };
-    for (s, dense) in det.symmetries.iter_mut().zip(lifted) {
+    let count = det.symmetries.len();
+    for (i, (s, dense)) in det.symmetries.iter_mut().zip(lifted).enumerate() {
+        if !progress(0.97 + 0.03 * i as f64 / count as f64) {
+            return Err(Error::Cancelled { stage: "judge" });
+        }
         s.verdict = judge.judge(&dense.map, s.distortion, params.max_distortion);
         (s.map, s.confidence) = in_input_indices(&mesh, &dense);
         s.region_size = dense.region_size;

@@ -155,6 +155,43 @@ impl EdgeGraph {
         d
     }
 
+    /// The nearest of `sources` (its index) for every vertex: multi-source Dijkstra, a tie
+    /// going to the source whose search got there first. `progress(fraction of the vertices
+    /// settled)` is called every 2¹⁴ of them; `None` when it returns `false`. A vertex no
+    /// source reaches (another component) gets `u32::MAX`.
+    pub fn nearest_sources(&self, sources: &[usize], progress: &mut dyn FnMut(f64) -> bool) -> Option<Vec<u32>> {
+        let n = self.off.len() - 1;
+        let mut d = vec![f64::INFINITY; n];
+        let mut owner = vec![u32::MAX; n];
+        let mut heap = BinaryHeap::with_capacity(2 * sources.len());
+        for (c, &s) in sources.iter().enumerate() {
+            d[s] = 0.0;
+            owner[s] = c as u32;
+            heap.push(Reverse((0u64, s as u32)));
+        }
+        let mut settled = 0usize;
+        while let Some(Reverse((key, v))) = heap.pop() {
+            let (dv, v) = (f64::from_bits(key), v as usize);
+            if dv > d[v] {
+                continue;
+            }
+            settled += 1;
+            if settled % (1 << 14) == 0 && !progress(settled as f64 / n as f64) {
+                return None;
+            }
+            for e in self.off[v]..self.off[v + 1] {
+                let u = self.nbr[e] as usize;
+                let nd = dv + self.len[e];
+                if nd < d[u] {
+                    d[u] = nd;
+                    owner[u] = owner[v];
+                    heap.push(Reverse((nd.to_bits(), u as u32)));
+                }
+            }
+        }
+        Some(owner)
+    }
+
     fn distances_heap(&self, src: usize) -> Vec<f64> {
         let n = self.off.len() - 1;
         let mut d = vec![f64::INFINITY; n];
@@ -537,6 +574,31 @@ mod tests {
         let u = nbr[off[0]] as usize;
         p[u] = [p[0][0] + 1e-9, p[0][1], p[0][2]];
         assert!(EdgeGraph::new(&p, (off, nbr)).buckets.is_none());
+    }
+
+    /// Every vertex's nearest source is one at its distance from the nearest (the minimum of
+    /// single-source searches), each source owns itself, the cells are those of the
+    /// farthest-point sampling's search from the same seeds, and a `false` from the progress
+    /// callback cancels.
+    #[test]
+    fn nearest_sources_are_nearest() {
+        let c = shapes::quadruped(4, Pose::Walking, 0.005, 3);
+        let g = EdgeGraph::new(&c.mesh.vertices, c.mesh.adjacency());
+        let sources = [5usize, 400, 1300, 2000, 2500];
+        let owner = g.nearest_sources(&sources, &mut |_| true).unwrap();
+        let d: Vec<Vec<f64>> = sources.iter().map(|&s| g.distances(s)).collect();
+        for v in 0..owner.len() {
+            let best = d.iter().map(|col| col[v]).fold(f64::INFINITY, f64::min);
+            assert!(d[owner[v] as usize][v] <= best * (1.0 + 1e-12), "vertex {v}");
+        }
+        assert!(sources.iter().enumerate().all(|(i, &s)| owner[s] == i as u32));
+        let (_, cells) = crate::maps::proxy::geodesic_farthest_points(&g, &sources, sources.len());
+        assert_eq!(owner, cells);
+        let mut calls = 0;
+        let big = shapes::quadruped(6, Pose::Walking, 0.0, 0);
+        let g = EdgeGraph::new(&big.mesh.vertices, big.mesh.adjacency());
+        assert!(g.nearest_sources(&[0], &mut |_| { calls += 1; false }).is_none());
+        assert_eq!(calls, 1);
     }
 
     /// A map that is right except on one leg, which it maps to itself, is repaired: the leg's
