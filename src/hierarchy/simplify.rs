@@ -32,6 +32,10 @@ use crate::mesh::Mesh;
 /// ([`super::MARGIN`]). With the rounds below, β = 10: KIDS 87.5%.
 const LENGTH_WEIGHT: f64 = 10.0;
 
+/// The live faces around a vertex, inline (one cache line, no pointer to chase: the costing
+/// touches every neighbour's list).
+type Faces = smallvec::SmallVec<[u32; 10]>;
+
 /// Vertices per block of the first costing (between progress calls).
 const BLOCK: usize = 1 << 17;
 
@@ -59,7 +63,7 @@ impl Quadric {
 }
 
 /// The sorted neighbours of `v` through its live faces.
-fn neighbours(v: usize, around: &[Vec<u32>], faces: &[[u32; 3]], out: &mut Vec<u32>) {
+fn neighbours(v: usize, around: &[Faces], faces: &[[u32; 3]], out: &mut Vec<u32>) {
     out.clear();
     for &f in &around[v] {
         for &w in &faces[f as usize] {
@@ -94,7 +98,7 @@ impl Edge {
 /// and their apexes if so. `nu` are the sorted neighbours of `u` ([`neighbours`]), `nv`
 /// scratch space.
 #[allow(clippy::too_many_arguments)]
-fn collapsible(u: usize, v: usize, p: &[[f64; 3]], around: &[Vec<u32>], faces: &[[u32; 3]], boundary: &[bool], nu: &[u32], nv: &mut Vec<u32>) -> Option<Edge> {
+fn collapsible(u: usize, v: usize, p: &[[f64; 3]], around: &[Faces], faces: &[[u32; 3]], boundary: &[bool], nu: &[u32], nv: &mut Vec<u32>) -> Option<Edge> {
     let mut e = Edge { faces: [0; 2], apexes: [0; 2], count: 0 };
     for &f in &around[u] {
         let t = faces[f as usize];
@@ -157,7 +161,7 @@ pub fn simplify_with_progress(mesh: &Mesh, target: usize, progress: &mut dyn FnM
     let p = &mesh.vertices;
     let mut faces: Vec<[u32; 3]> = mesh.triangles.clone();
     let mut face_alive = vec![true; faces.len()];
-    let mut around: Vec<Vec<u32>> = vec![Vec::new(); n];
+    let mut around: Vec<Faces> = vec![Faces::new(); n];
     for (f, t) in faces.iter().enumerate() {
         for &v in t {
             around[v as usize].push(f as u32);
@@ -239,7 +243,7 @@ pub fn simplify_with_progress(mesh: &Mesh, target: usize, progress: &mut dyn FnM
     // cheapest was refused stayed stuck (KIDS 60k 68.8% against 87.5%).
     // Each vertex's cheapest allowed collapse (as a heap of every edge would pop it), recomputed
     // only where a collapse changed the neighbourhood (`dirty`).
-    let best_of = |u: usize, around: &[Vec<u32>], faces: &[[u32; 3]], quadric: &[Quadric], boundary: &[bool], scratch: &mut Scratch| -> (u64, u32) {
+    let best_of = |u: usize, around: &[Faces], faces: &[[u32; 3]], quadric: &[Quadric], boundary: &[bool], scratch: &mut Scratch| -> (u64, u32) {
         let Scratch { nb, nv, options } = scratch;
         neighbours(u, around, faces, nb);
         options.clear();
@@ -316,10 +320,10 @@ pub fn simplify_with_progress(mesh: &Mesh, target: usize, progress: &mut dyn FnM
                 }
             }
             around[u].clear();
-            around[v].retain(|&f| face_alive[f as usize]);
+            around[v].retain(|f| face_alive[*f as usize]);
             around[v].extend(moved);
             for &a in apexes {
-                around[a as usize].retain(|&f| face_alive[f as usize]);
+                around[a as usize].retain(|f| face_alive[*f as usize]);
             }
             vertex_alive[u] = false;
             alive -= 1;
