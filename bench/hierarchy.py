@@ -2,7 +2,7 @@
 """Large meshes on the hierarchy (issue 17): time per stage, peak memory and accuracy, with
 scipy's eigsh on the full mesh as the peer, all in one run.
 
-    python3 bench/hierarchy.py BIN EVAL_BIN [--big]
+    python3 bench/hierarchy.py BIN EVAL_BIN [--big] [--against OLD_BIN]
 
 BIN is `intrinsym`, EVAL_BIN `intrinsym-eval` of the build to measure. Cases:
   * 5k: TOSCA's cat0 (under the hierarchy's threshold: the full pipeline);
@@ -16,6 +16,11 @@ stage timings; accuracy (best acc@0.05 of the reported symmetries) by EVAL_BIN, 
 poses also with `--set hierarchy_vertices=0` (the full-resolution pipeline, same run); and
 scipy's `eigsh` (k = 100, shift-invert, cotangent Laplacian and lumped mass built here) on
 the 60k and 239k meshes. Prints Markdown tables.
+
+With --against OLD_BIN, each mesh is also detected by an older build, interleaved with BIN
+(old, new, old, new: this machine's speed drifts by tens of percent), and the table gets the
+ratio new / old of the faster of the two runs of each (detection time), and the ratio of
+BIN's detection to eigsh.
 """
 import glob
 import json
@@ -114,6 +119,7 @@ def main():
     if len(sys.argv) < 3:
         sys.exit(__doc__)
     binary, eval_bin, big = sys.argv[1], sys.argv[2], "--big" in sys.argv[3:]
+    old = sys.argv[sys.argv.index("--against") + 1] if "--against" in sys.argv else None
     tmp = tempfile.mkdtemp(prefix="intrinsym-hierarchy-")
     try:
         kids = sorted(glob.glob(os.path.join(DATA, "kids_hires", "*.off")))
@@ -139,16 +145,27 @@ def main():
         acc_full = accuracy(eval_bin, os.path.join(DATA, "kids_hires"), ("--set", "hierarchy_vertices=0"))
         if big:
             acc.update(accuracy(eval_bin, scan))
-        print("| mesh | vertices | wall s | detection s | coarse mesh s | lift s | spectral s | maps s | peak MiB | acc@0.05 | full resolution acc@0.05 | scipy eigsh s (k=100) |")
-        print("|---|---|---|---|---|---|---|---|---|---|---|---|")
+        extra = " new/old detection | detection/eigsh |" if old else ""
+        print("| mesh | vertices | wall s | detection s | coarse mesh s | lift s | spectral s | maps s | peak MiB | acc@0.05 | full resolution acc@0.05 | scipy eigsh s (k=100) |" + extra)
+        print("|---|---|---|---|---|---|---|---|---|---|---|---|" + ("---|---|" if old else ""))
         for label, path, kind in cases:
-            report, wall, peak = detect(binary, path)
+            if old:
+                runs = [(detect(b, path), b) for _ in range(2) for b in (old, binary)]
+                fastest = lambda b: min((r for r, bb in runs if bb == b), key=lambda r: r[0]["timings"]["total"])
+                (report, wall, peak), previous = fastest(binary), fastest(old)[0]
+            else:
+                report, wall, peak = detect(binary, path)
             t = report["timings"]
             shape = os.path.basename(path)[:-4]
             a = f"{100 * acc[shape]:.1f}%" if shape in acc else "–"
             full = f"{100 * acc_full[shape]:.1f}%" if shape in acc_full else "–"
-            eig = f"{scipy_eigsh(path):.2f}" if report["vertices"] <= 250000 and kind is not None else "–"
-            print(f"| {label} | {report['vertices']} | {wall:.2f} | {t['total']:.2f} | {t.get('hierarchy', 0):.2f} | {t.get('lift', 0):.2f} | {t['spectral']:.2f} | {t['maps']:.2f} | {peak:.0f} | {a} | {full} | {eig} |", flush=True)
+            eig_s = scipy_eigsh(path) if report["vertices"] <= 250000 and kind is not None else None
+            eig = f"{eig_s:.2f}" if eig_s else "–"
+            row = f"| {label} | {report['vertices']} | {wall:.2f} | {t['total']:.2f} | {t.get('hierarchy', 0):.2f} | {t.get('lift', 0):.2f} | {t['spectral']:.2f} | {t['maps']:.2f} | {peak:.0f} | {a} | {full} | {eig} |"
+            if old:
+                ratio = f"{t['total'] / eig_s:.2f}" if eig_s else "–"
+                row += f" {t['total'] / previous['timings']['total']:.2f} | {ratio} |"
+            print(row, flush=True)
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
 
