@@ -170,26 +170,39 @@ impl EdgeGraph {
             heap.push(Reverse((0u64, s as u32)));
         }
         let mut settled = 0usize;
+        let done = self.relax_owners(&mut d, &mut owner, &mut heap, &mut |_, _| {
+            settled += 1;
+            settled % (1 << 14) != 0 || progress(settled as f64 / n as f64)
+        });
+        done.then_some(owner)
+    }
+
+    /// Multi-source Dijkstra carried on from the state `(dist, owner, heap)`: each vertex
+    /// settled gets the owner of the neighbour it was reached from, and `settled(vertex, its
+    /// distance's bits)` is called once per vertex settled; it stops the search (and this
+    /// returns `false`) by returning `false`. Non-negative f64s order like their bit patterns.
+    /// The one relaxation loop of [`Self::nearest_sources`] and of the proxy's geodesic
+    /// farthest-point sampling, which adds sources between searches.
+    pub(crate) fn relax_owners(&self, dist: &mut [f64], owner: &mut [u32], heap: &mut BinaryHeap<Reverse<(u64, u32)>>, settled: &mut dyn FnMut(usize, u64) -> bool) -> bool {
         while let Some(Reverse((key, v))) = heap.pop() {
             let (dv, v) = (f64::from_bits(key), v as usize);
-            if dv > d[v] {
+            if dv > dist[v] {
                 continue;
             }
-            settled += 1;
-            if settled % (1 << 14) == 0 && !progress(settled as f64 / n as f64) {
-                return None;
+            if !settled(v, key) {
+                return false;
             }
             for e in self.off[v]..self.off[v + 1] {
                 let u = self.nbr[e] as usize;
                 let nd = dv + self.len[e];
-                if nd < d[u] {
-                    d[u] = nd;
+                if nd < dist[u] {
+                    dist[u] = nd;
                     owner[u] = owner[v];
                     heap.push(Reverse((nd.to_bits(), u as u32)));
                 }
             }
         }
-        Some(owner)
+        true
     }
 
     fn distances_heap(&self, src: usize) -> Vec<f64> {

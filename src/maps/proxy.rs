@@ -207,7 +207,8 @@ pub(crate) fn lift(
                 }
             }
             // A cell not connected through its own vertices (not from the Voronoi cells of
-            // `geodesic_farthest_points`, which are): the rest from the seed's image.
+            // `geodesic_farthest_points` or `EdgeGraph::nearest_sources`, which are; a vertex that
+            // joined cell 0 from an unreached part is one): the rest from the seed's image.
             for &u in &members[off[c]..off[c + 1]] {
                 let u = u as usize;
                 if local[u] == usize::MAX {
@@ -222,7 +223,8 @@ pub(crate) fn lift(
     for (u, w) in placed.into_iter().flatten() {
         image[u as usize] = w as usize;
     }
-    // Every component has a seed (`geodesic_farthest_points`), so every vertex is placed.
+    // Every vertex is in a cell: a component without a seed is a cell of its own
+    // (`geodesic_farthest_points`) or joins cell 0 (`Hierarchy`'s `nearest_sources` cells).
     debug_assert!(image.iter().all(|&w| w != usize::MAX));
     let mut map = vec![-1i64; n];
     let mut confidence = vec![0.0; n];
@@ -269,22 +271,10 @@ pub(crate) fn geodesic_farthest_points(graph: &EdgeGraph, first: &[usize], size:
             owner[s] = c;
             near.push(Reverse((0, s as u32)));
         }
-        while let Some(Reverse((key, v))) = near.pop() {
-            let (dv, v) = (f64::from_bits(key), v as usize);
-            if dv > dist[v] {
-                continue;
-            }
+        graph.relax_owners(dist, owner, &mut near, &mut |v, key| {
             far.push((key, v as u32));
-            for e in graph.off[v]..graph.off[v + 1] {
-                let u = graph.nbr[e] as usize;
-                let nd = dv + graph.len[e];
-                if nd < dist[u] {
-                    dist[u] = nd;
-                    owner[u] = owner[v];
-                    near.push(Reverse((nd.to_bits(), u as u32)));
-                }
-            }
-        }
+            true
+        });
     };
     grow(first, &mut seeds, &mut dist, &mut owner, &mut far);
     // Unreached vertices (other components) are candidates at infinite distance.
