@@ -4,7 +4,8 @@
 //! The phases: **hypotheses** (voting's candidates as profile maps, and the orientation-reversing
 //! functional map of [`crate::maps::orientation`]) → **refine** (ZoomOut and a second profile
 //! pass, then the geodesic polish) → **judge** ([`crate::judge`]) → **report** (compositions
-//! complete the group, maps are lifted from a proxy, characterised and grouped).
+//! complete the group, maps between repeated parts are added when [`crate::parts`] is
+//! enabled, maps are lifted from a proxy, characterised and grouped).
 //!
 //! One judge decides: a map that is locally the identity on more than `max_fixed` of the
 //! surface is dropped (the identity always fits the descriptors); a map whose distances change
@@ -45,6 +46,7 @@ use crate::hierarchy::Hierarchy;
 use crate::judge::{Judge, JudgeParams, Verdict};
 use crate::maps::{self, proxy::Proxy, Context, MapParams};
 use crate::mesh::Mesh;
+use crate::parts::PartParams;
 use crate::sampling::farthest_point;
 use crate::spectral::{Eigenbasis, EigenParams};
 use crate::voting::{vote, VotingParams};
@@ -102,6 +104,8 @@ pub struct Params {
     pub judge: JudgeParams,
     /// The continuous-symmetry test ([`crate::characterize::continuous`]).
     pub continuous: ContinuousParams,
+    /// Partial symmetries between repeated parts ([`crate::parts`]).
+    pub parts: PartParams,
     /// A component of more than 3 times this many vertices is detected on a coarse mesh of
     /// this many, and the maps are lifted ([`crate::hierarchy`]; default 6000, 0: never).
     pub hierarchy_vertices: usize,
@@ -127,6 +131,7 @@ impl Default for Params {
             max_order: 12,
             judge: JudgeParams::default(),
             continuous: ContinuousParams::default(),
+            parts: PartParams::default(),
             hierarchy_vertices: 6000,
         }
     }
@@ -236,6 +241,8 @@ pub struct Timings {
     pub hierarchy: f64,
     /// Lifting the coarse mesh's maps to every vertex (0 without a hierarchy).
     pub lift: f64,
+    /// Partial symmetries between repeated parts ([`crate::parts`]).
+    pub parts: f64,
     /// Complexity, order, distortion.
     pub characterize: f64,
     /// Grouping.
@@ -317,6 +324,8 @@ impl Detection {
 /// A symmetry found by the maps stage, in the vertex indices of its domain.
 struct Found {
     dense: maps::DenseMap,
+    /// A map between repeated parts ([`crate::parts`]): reported after the others.
+    part: bool,
     seed: (usize, usize),
     distortion: f64,
     complexity: f64,
@@ -876,7 +885,7 @@ fn pipeline(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool)
         }
         let complexity = characterize::complexity(&maps::functional_map(basis, &dense.map, params.maps.fmap_size), params.complexity_width);
         let verdict = judged.unwrap_or_else(|| verdict(&dense));
-        let candidate = Found { dense, seed, distortion, complexity, verdict };
+        let candidate = Found { dense, part: false, seed, distortion, complexity, verdict };
         match same_as(&candidate.dense, verdict.reverses(), &found, 0.5) {
             Some(i) if !better(&candidate, &found[i]) => {}
             Some(i) => found[i] = candidate,
@@ -892,16 +901,19 @@ fn pipeline(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool)
     let t_stage = Instant::now();
     // Geodesic polish of every map (see `maps::geodesic`): on posed shapes geodesic distances
     // are preserved far more precisely than biharmonic ones or low eigenfunctions.
-    if params.maps.polish > 0 {
-        let mut geodesics = maps::geodesic::Geodesics::new(&ctx);
-        // Farthest-point sampling is incremental: these extend voting's samples.
-        let anchors = &polish_anchors;
-        if !progress(0.95) {
-            return Err(cancelled("polish"));
-        }
+    // Geodesic distances on the maps' domain, from the polish's anchors (farthest-point
+    // sampling is incremental: these extend voting's samples), for the polish and the parts.
+    if !progress(0.95) {
+        return Err(cancelled("polish"));
+    }
+    let geodesics = (params.maps.polish > 0 || params.parts.enabled).then(|| {
+        let mut g = maps::geodesic::Geodesics::new(&ctx);
         // The samples are the sources of every global map: their table is built once.
-        geodesics.pin(anchors);
-        let geodesics = &geodesics;
+        g.pin(&polish_anchors);
+        g
+    });
+    if let (true, Some(geodesics)) = (params.maps.polish > 0, &geodesics) {
+        let anchors = &polish_anchors;
         // Maps are polished independently, on all cores (the result does not depend on it), in
         // rounds of twice as many maps as cores (a free core takes the next map of its round)
         // with a cancellation check between rounds.
@@ -985,7 +997,7 @@ fn pipeline(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool)
                 let known = same_as(&dense, verdict.reverses(), &found, 0.5);
                 let complexity = characterize::complexity(&maps::functional_map(basis, &dense.map, params.maps.fmap_size), params.complexity_width);
                 let seed = (found[first].seed.0, dense.image[found[first].seed.0]);
-                let composed = Found { dense, seed, distortion, complexity, verdict };
+                let composed = Found { dense, part: false, seed, distortion, complexity, verdict };
                 match known {
                     Some(i) if found[i].dense.global && !better(&composed, &found[i]) => {}
                     Some(i) => found[i] = composed,
@@ -995,6 +1007,26 @@ fn pipeline(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool)
         }
     }
     timings.maps_compose = t_stage.elapsed().as_secs_f64();
+    // Phase 4 (the paper's §5): partial symmetries between repeated parts that no global map
+    // carries, each in a basis of its own parts (`crate::parts`).
+    let t_stage = Instant::now();
+    if !progress(0.96) {
+        return Err(cancelled("parts"));
+    }
+    if let (true, Some(g)) = (params.parts.enabled, &geodesics) {
+        let agd = g.mean_distances(&polish_anchors);
+        let globals: Vec<&[i64]> = found.iter().filter(|f| f.dense.global).map(|f| &f.dense.map[..]).collect();
+        let parts = crate::parts::find(g.graph(), &agd, &globals, scale, &params.parts);
+        let room = params.max_symmetries.saturating_sub(found.len());
+        for m in parts.into_iter().take(room) {
+            let distortion = characterize::sample_distortion(&m.dense.map, probes, emb, vinfo.diameter);
+            let complexity = characterize::complexity(&maps::functional_map(basis, &m.dense.map, params.maps.fmap_size), params.complexity_width);
+            let verdict = verdict(&m.dense);
+            found.push(Found { dense: m.dense, part: true, seed: m.tips, distortion, complexity, verdict });
+        }
+    }
+    drop(geodesics);
+    timings.parts = t_stage.elapsed().as_secs_f64();
     let (emb, basis, probes) = (fine_emb, fine_basis, &samples.vertices[..]);
     // Proxy maps lifted to every vertex (concurrently; each is independent), then judged
     // again on the mesh: distortion on the samples, complexity of the mesh's functional map.
@@ -1059,7 +1091,9 @@ fn report(mesh: &Mesh, mesh_judge: &Judge, mut found: Vec<Found>, emb: &crate::d
     for f in &mut found {
         f.verdict = mesh_judge.judge(&f.dense.map, f.distortion, params.max_distortion);
     }
-    found.sort_by(|a, b| b.verdict.score.total_cmp(&a.verdict.score));
+    // Maps between repeated parts after the others (they cover a part of the surface; the first
+    // symmetry is what a viewer colours by default).
+    found.sort_by(|a, b| a.part.cmp(&b.part).then(b.verdict.score.total_cmp(&a.verdict.score)));
     if continuous.dimension > 0 {
         // Every map found samples the continuous family or its coset: one of each type.
         let (mut reversing, mut preserving) = (false, false);

@@ -17,7 +17,8 @@
 //! One module per stage: [`mesh`] (validation, file input), [`spectral`] (cotangent
 //! Laplacian, lumped mass, shift-invert block Lanczos), [`descriptors`] (WKS), [`distance`]
 //! (biharmonic), [`sampling`] (farthest points), [`voting`] (correspondence space voting),
-//! [`maps`] (dense maps, ZoomOut), [`characterize`] (complexity, order), [`cluster`] (groups);
+//! [`maps`] (dense maps, ZoomOut), [`parts`] (partial symmetries between repeated parts,
+//! experimental), [`characterize`] (complexity, order), [`cluster`] (groups);
 //! [`detect`] runs them all. [`output`] writes JSON, PLY and reports, [`eval`] scores maps
 //! against ground truth, and [`shapes`] generates test shapes with known symmetry.
 
@@ -37,6 +38,7 @@ pub mod maps;
 pub mod mesh;
 pub mod output;
 mod parallel;
+pub mod parts;
 pub mod sampling;
 pub mod shapes;
 pub mod spectral;

@@ -69,6 +69,10 @@ enum Command {
         /// Number of symmetry groups (default: automatic).
         #[arg(long)]
         groups: Option<usize>,
+        /// Also look for partial symmetries between repeated parts that no global symmetry
+        /// carries (a front paw onto a hind paw; experimental, see `intrinsym::parts`).
+        #[arg(long)]
+        parts: bool,
         /// Refuse edges shared by more than two triangles (by default they are accepted and
         /// counted).
         #[arg(long)]
@@ -127,6 +131,11 @@ enum Shape {
     QuadrupedRest,
     /// A flat five-armed star (icosphere level `size`).
     Star,
+    /// A posed four-legged animal whose identical legs are directed (knee, toe forward): its
+    /// front and hind legs map onto each other by a translation, no global symmetry.
+    DirectedQuadruped,
+    /// A long body with three identical directed spikes in a row.
+    Spiked,
 }
 
 fn main() -> ExitCode {
@@ -157,6 +166,7 @@ fn run(cli: Cli) -> Result<(), intrinsym::Error> {
             proxy_vertices,
             hierarchy_vertices,
             groups,
+            parts,
             reject_non_manifold,
             allow_non_manifold: _,
             no_weld,
@@ -185,6 +195,7 @@ fn run(cli: Cli) -> Result<(), intrinsym::Error> {
             params.maps.proxy_vertices = proxy_vertices;
             params.hierarchy_vertices = hierarchy_vertices;
             params.groups = groups;
+            params.parts.enabled = parts;
             // A progress bar on stderr, hidden when stderr is not a terminal.
             let bar = indicatif::ProgressBar::with_draw_target(Some(1000), indicatif::ProgressDrawTarget::stderr());
             bar.set_style(
@@ -375,6 +386,14 @@ fn run(cli: Cli) -> Result<(), intrinsym::Error> {
                     (c.mesh, Some(c.mirror))
                 }
                 Shape::Star => (shapes::star(5, size as u32).mesh, None),
+                Shape::DirectedQuadruped => {
+                    let c = shapes::directed_quadruped(size as u32, shapes::Pose::Walking, 0.0, 0);
+                    (c.mesh, Some(c.mirror))
+                }
+                Shape::Spiked => {
+                    let c = shapes::spiked(size as u32, 0.0, 0);
+                    (c.mesh, Some(c.mirror))
+                }
             };
             if let (Some(path), Some(mirror)) = (truth, mirror) {
                 let text: String = mirror.iter().enumerate().map(|(v, m)| format!("{v} {m}\n")).collect();

@@ -252,6 +252,18 @@ impl Geodesics {
         self.pinned = Some((sources.to_vec(), t));
     }
 
+    /// The edge graph searched.
+    pub(crate) fn graph(&self) -> &EdgeGraph {
+        &self.graph
+    }
+
+    /// Each vertex's mean distance to `sources` (their table is built if it is not cached).
+    pub(crate) fn mean_distances(&self, sources: &[usize]) -> Vec<f64> {
+        let t = self.table(sources);
+        let s = sources.len().max(1);
+        t.chunks(s).map(|row| row.iter().filter(|d| d.is_finite()).sum::<f64>() / s as f64).collect()
+    }
+
     /// `(n · s)` row-major distances from the `s` sources (a vertex's distances contiguous);
     /// missing sources are searched on all cores.
     fn table(&self, sources: &[usize]) -> Arc<Vec<f64>> {

@@ -2,9 +2,9 @@
 //!
 //! ```text
 //! { "vertices": n, "faces": m,
-//!   "params": { "eigenpairs", "samples", "seed", "wks_quantile", "eps", "accept", "polish", "proxy_vertices", "hierarchy_vertices", "groups" },
+//!   "params": { "eigenpairs", "samples", "seed", "wks_quantile", "eps", "accept", "polish", "proxy_vertices", "hierarchy_vertices", "groups", "parts" },
 //!   "timings": { "spectral", "descriptors", "distance", "sampling", "voting", "maps",
-//!                "maps_proxy", "maps_profile", "maps_fmap", "maps_refine", "maps_polish", "maps_compose", "maps_lift",
+//!                "maps_proxy", "maps_profile", "maps_fmap", "maps_refine", "maps_polish", "maps_compose", "maps_lift", "parts",
 //!                "congruence", "hierarchy", "lift", "characterize", "cluster", "total" },   // seconds
 //!   "continuous": { "dimension": d, "residuals": [floats] },   // d > 0: a continuous family
 //!   "components": [ { "vertices", "area", "continuous": { "dimension", "residuals" } } ],
@@ -86,6 +86,7 @@ pub fn to_json(det: &Detection, params: &Params) -> Value {
             "proxy_vertices": params.maps.proxy_vertices,
             "hierarchy_vertices": params.hierarchy_vertices,
             "groups": params.groups,
+            "parts": params.parts.enabled,
         },
         "timings": {
             "spectral": t.spectral,
@@ -101,6 +102,7 @@ pub fn to_json(det: &Detection, params: &Params) -> Value {
             "maps_compose": t.maps_compose,
             "maps_proxy": t.maps_proxy,
             "maps_lift": t.maps_lift,
+            "parts": t.parts,
             "congruence": t.congruence,
             "hierarchy": t.hierarchy,
             "lift": t.lift,

@@ -231,6 +231,27 @@ fn rotate(p: [f64; 3], c: [f64; 3], k: [f64; 3], angle: f64) -> [f64; 3] {
 /// given limbs; posed by each limb's `bend`, then displaced along vertex normals by Gaussian
 /// noise of standard deviation `noise` × bounding-box diagonal (seeded).
 pub fn creature(level: u32, body: [f64; 3], limbs: &[Limb], noise: f64, seed: u64) -> Creature {
+    creature_with(level, body, limbs, &[], noise, seed)
+}
+
+/// What makes a limb *directed* (not mirror-symmetric front to back, as a real leg is not):
+/// in the rest shape, the front half of its tip is drawn out forward into a toe, then its lower
+/// half is turned about a knee at mid-length so that the foot swings forward. Identical
+/// directed limbs are congruent by a translation (the knee of a front leg and of a hind leg
+/// both point backward), which no reflection of the body reproduces.
+#[derive(Clone, Debug)]
+pub struct Directed {
+    /// The forward direction (the toe and the swing point this way).
+    pub forward: [f64; 3],
+    /// Knee angle (radians) of the lower half.
+    pub knee: f64,
+    /// Length of the toe, as a fraction of the limb's length.
+    pub toe: f64,
+}
+
+/// [`creature`] with directed limbs: `directed[j]` (when present and `Some`) shapes limb `j`
+/// at rest, before pose and noise.
+pub fn creature_with(level: u32, body: [f64; 3], limbs: &[Limb], directed: &[Option<Directed>], noise: f64, seed: u64) -> Creature {
     let (sphere, t) = icosphere_arrays(level);
     let limbs: Vec<Limb> = limbs.iter().map(|l| Limb { direction: normalize(l.direction), axis: normalize(l.axis), bend_axis: normalize(l.bend_axis), ..l.clone() }).collect();
     let n = sphere.len();
@@ -246,6 +267,10 @@ pub fn creature(level: u32, body: [f64; 3], limbs: &[Limb], noise: f64, seed: u6
                 let grow = l.length * (1.0 - smoothstep(t));
                 for d in 0..3 {
                     p[d] += grow * l.axis[d];
+                }
+                if let Some(Some(dir)) = directed.get(j) {
+                    let base = [body[0] * l.direction[0], body[1] * l.direction[1], body[2] * l.direction[2]];
+                    p = direct(p, u, base, l, dir, grow / l.length);
                 }
                 // Skinning weight: 1 inside the limb, blending to 0 over its base.
                 weights[v][j] = 1.0 - smoothstep((t - 0.55) / 0.45);
@@ -294,6 +319,27 @@ pub fn creature(level: u32, body: [f64; 3], limbs: &[Limb], noise: f64, seed: u6
     Creature { mesh, mirror, limb: limb_of, limbs, rest }
 }
 
+/// The rest position `p` of a limb vertex (sphere point `u`, at height `h` ∈ [0, 1] of the
+/// limb `l` grown from `base`) with the limb directed by `dir`: the toe, then the knee.
+fn direct(mut p: [f64; 3], u: [f64; 3], base: [f64; 3], l: &Limb, dir: &Directed, h: f64) -> [f64; 3] {
+    // Forward across the cap: the forward direction in the sphere's tangent plane at the
+    // cap's centre, and how far forward `u` lies in the cap (1 at the cap's front rim).
+    let f = dir.forward;
+    let along = dot(f, l.direction);
+    let tangent = normalize(std::array::from_fn(|d| f[d] - along * l.direction[d]));
+    let w = (dot(u, tangent) / l.cap.sin()).clamp(-1.0, 1.0);
+    let toe = dir.toe * l.length * smoothstep((h - 0.6) / 0.4) * w.max(0.0);
+    let f_perp = normalize(std::array::from_fn(|d| f[d] - dot(f, l.axis) * l.axis[d]));
+    for d in 0..3 {
+        p[d] += toe * f_perp[d];
+    }
+    // The knee: the lower half turns about the lateral axis through the limb's midpoint, the
+    // foot swinging forward (blended over 0.4..0.6 of the height).
+    let lateral = normalize(cross(l.axis, f_perp));
+    let knee = std::array::from_fn(|d| base[d] + 0.5 * l.length * l.axis[d]);
+    rotate(p, knee, lateral, -dir.knee * smoothstep((h - 0.4) / 0.2))
+}
+
 impl Creature {
     /// Ground truth of the partial symmetry "limb `i` → limb `j`" for limbs that are mirror
     /// images of each other across the planes x = 0 and/or z = 0 of the rest shape (the four legs
@@ -306,27 +352,9 @@ impl Creature {
     /// matters: a translation would map the front of a front leg to the front of a hind leg,
     /// which no intrinsic symmetry of the shape does.
     pub fn limb_truth(&self, i: usize, j: usize) -> Vec<(usize, Vec<usize>)> {
-        let base = |l: usize| {
-            let vs: Vec<usize> = (0..self.rest.len()).filter(|&v| self.limb[v] == l).collect();
-            let mut c = [0.0; 3];
-            for &v in &vs {
-                for d in 0..3 {
-                    c[d] += self.rest[v][d] / vs.len() as f64;
-                }
-            }
-            (vs, c)
-        };
-        let (vi, ci) = base(i);
-        let (vj, cj) = base(j);
-        let nearest = |q: [f64; 3]| {
-            *vj.iter()
-                .min_by(|&&a, &&b| {
-                    let da: f64 = (0..3).map(|d| (self.rest[a][d] - q[d]).powi(2)).sum();
-                    let db: f64 = (0..3).map(|d| (self.rest[b][d] - q[d]).powi(2)).sum();
-                    da.total_cmp(&db)
-                })
-                .expect("limb j has vertices")
-        };
+        let (vi, ci) = self.limb_vertices(i);
+        let (vj, cj) = self.limb_vertices(j);
+        let nearest = |q: [f64; 3]| *vj.iter().min_by(|&&a, &&b| dist2(self.rest[a], q).total_cmp(&dist2(self.rest[b], q))).expect("limb j has vertices");
         // The reflection(s) carrying limb i onto limb j: flip x and/or z where the centroids
         // lie on opposite sides.
         let (rx, rz) = (if ci[0] * cj[0] < 0.0 { -1.0 } else { 1.0 }, if ci[2] * cj[2] < 0.0 { -1.0 } else { 1.0 });
@@ -339,6 +367,42 @@ impl Creature {
             })
             .collect()
     }
+
+    /// Ground truth of the partial symmetry "limb `i` → limb `j`" for limbs that are
+    /// translates of each other at rest (the directed legs of [`directed_quadruped`], the
+    /// spikes of [`spiked`]): for each vertex of limb `i`, the vertex of limb `j` nearest its
+    /// translate (by the difference of the limbs' centroids), and the one nearest its translate
+    /// mirrored across the plane x = const through limb `j`'s centroid (the limb's own
+    /// left–right mirror: either image is correct).
+    pub fn translation_truth(&self, i: usize, j: usize) -> Vec<(usize, Vec<usize>)> {
+        let (vi, ci) = self.limb_vertices(i);
+        let (vj, cj) = self.limb_vertices(j);
+        let nearest = |q: [f64; 3]| *vj.iter().min_by(|&&a, &&b| dist2(self.rest[a], q).total_cmp(&dist2(self.rest[b], q))).expect("limb j has vertices");
+        vi.iter()
+            .map(|&v| {
+                let p = self.rest[v];
+                let local = [p[0] - ci[0], p[1] - ci[1], p[2] - ci[2]];
+                let image = |fx: f64| nearest([cj[0] + fx * local[0], cj[1] + local[1], cj[2] + local[2]]);
+                (v, vec![image(1.0), image(-1.0)])
+            })
+            .collect()
+    }
+
+    /// The vertices of limb `l` and their centroid at rest.
+    fn limb_vertices(&self, l: usize) -> (Vec<usize>, [f64; 3]) {
+        let vs: Vec<usize> = (0..self.rest.len()).filter(|&v| self.limb[v] == l).collect();
+        let mut c = [0.0; 3];
+        for &v in &vs {
+            for d in 0..3 {
+                c[d] += self.rest[v][d] / vs.len() as f64;
+            }
+        }
+        (vs, c)
+    }
+}
+
+fn dist2(a: [f64; 3], b: [f64; 3]) -> f64 {
+    (0..3).map(|d| (a[d] - b[d]).powi(2)).sum()
 }
 
 /// Area-weighted unit vertex normals over the mesh's own triangles ([`Mesh::vertex_normals`]).
@@ -378,6 +442,46 @@ pub fn quadruped(level: u32, pose: Pose, noise: f64, seed: u64) -> Creature {
         Limb { direction: [0.0, 0.25, -1.0], axis: [0.0, 0.3, -1.0], length: 0.9, cap: 0.22, bend: if walking { -0.7 } else { 0.0 }, bend_axis: x },
     ];
     creature(level, [0.5, 0.45, 1.0], &limbs, noise, seed)
+}
+
+/// A four-legged animal like [`quadruped`] whose four identical legs are *directed* (knee
+/// bent, toe forward: [`Directed`]) and grow straight down from caps placed symmetrically front
+/// and back, so the only global symmetry is the left–right mirror, and a front leg maps onto a
+/// hind leg by a translation of the leg ([`Creature::translation_truth`]), a partial symmetry
+/// no map of the whole body carries. Limbs 0..4 are the legs (front-left, front-right,
+/// hind-left, hind-right), 4 the head, 5 the tail. `Pose::Walking` swings the legs as in
+/// [`quadruped`]. `level` 4 gives 2,562 vertices, 5 gives 10,242.
+pub fn directed_quadruped(level: u32, pose: Pose, noise: f64, seed: u64) -> Creature {
+    let walking = pose == Pose::Walking;
+    let x = [1.0, 0.0, 0.0];
+    let leg = |sx: f64, sz: f64, bend: f64| Limb {
+        direction: [0.55 * sx, -0.75, 0.55 * sz],
+        axis: [0.0, -1.0, 0.0],
+        length: 1.1,
+        cap: 0.38,
+        bend: if walking { bend } else { 0.0 },
+        bend_axis: x,
+    };
+    let limbs = [
+        leg(1.0, 1.0, 0.4),
+        leg(-1.0, 1.0, -0.3),
+        leg(1.0, -1.0, -0.35),
+        leg(-1.0, -1.0, 0.3),
+        Limb { direction: [0.0, 0.45, 1.0], axis: [0.0, 0.35, 1.0], length: 0.6, cap: 0.5, bend: if walking { 0.6 } else { 0.0 }, bend_axis: [0.0, 1.0, 0.0] },
+        Limb { direction: [0.0, 0.25, -1.0], axis: [0.0, 0.3, -1.0], length: 0.9, cap: 0.22, bend: if walking { -0.7 } else { 0.0 }, bend_axis: x },
+    ];
+    let paw = Some(Directed { forward: [0.0, 0.0, 1.0], knee: 0.6, toe: 0.6 });
+    creature_with(level, [0.5, 0.45, 1.0], &limbs, &[paw.clone(), paw.clone(), paw.clone(), paw], noise, seed)
+}
+
+/// A long body with three identical directed spikes in a row along its back (limbs 0, 1, 2,
+/// front to back): each spike maps onto the others by a translation
+/// ([`Creature::translation_truth`]), and the only global symmetry is the left–right mirror.
+pub fn spiked(level: u32, noise: f64, seed: u64) -> Creature {
+    let spike = |z: f64| Limb { direction: [0.0, 1.0, z], axis: [0.0, 1.0, 0.0], length: 0.8, cap: 0.3, bend: 0.0, bend_axis: [1.0, 0.0, 0.0] };
+    let limbs = [spike(0.55), spike(0.0), spike(-0.55)];
+    let tip = Some(Directed { forward: [0.0, 0.0, 1.0], knee: 0.5, toe: 0.6 });
+    creature_with(level, [0.45, 0.4, 1.2], &limbs, &[tip.clone(), tip.clone(), tip], noise, seed)
 }
 
 /// The `4·arms − 1` non-trivial symmetries of [`star`] as vertex maps, named. The star is
