@@ -323,12 +323,13 @@ pub fn creature_with(level: u32, body: [f64; 3], limbs: &[Limb], directed: &[Opt
 /// limb `l` grown from `base`) with the limb directed by `dir`: the toe, then the knee.
 fn direct(mut p: [f64; 3], u: [f64; 3], base: [f64; 3], l: &Limb, dir: &Directed, h: f64) -> [f64; 3] {
     // Forward across the cap: the forward direction in the sphere's tangent plane at the
-    // cap's centre, and how far forward `u` lies in the cap (1 at the cap's front rim).
+    // cap's centre, and how far forward `u` lies in the cap.
     let f = dir.forward;
     let along = dot(f, l.direction);
     let tangent = normalize(std::array::from_fn(|d| f[d] - along * l.direction[d]));
-    let w = (dot(u, tangent) / l.cap.sin()).clamp(-1.0, 1.0);
-    let toe = dir.toe * l.length * smoothstep((h - 0.6) / 0.4) * w.max(0.0);
+    // 1 on the front half of the cap beyond a third of its radius, fading to 0 at its centre.
+    let w = (dot(u, tangent) / (l.cap / 3.0).sin()).clamp(-1.0, 1.0);
+    let toe = dir.toe * l.length * smoothstep((h - 0.5) / 0.35) * w.max(0.0);
     let f_perp = normalize(std::array::from_fn(|d| f[d] - dot(f, l.axis) * l.axis[d]));
     for d in 0..3 {
         p[d] += toe * f_perp[d];
@@ -455,7 +456,7 @@ pub fn directed_quadruped(level: u32, pose: Pose, noise: f64, seed: u64) -> Crea
     let walking = pose == Pose::Walking;
     let x = [1.0, 0.0, 0.0];
     let leg = |sx: f64, sz: f64, bend: f64| Limb {
-        direction: [0.55 * sx, -0.75, 0.55 * sz],
+        direction: [0.55 * sx, -0.75, 0.35 * sz],
         axis: [0.0, -1.0, 0.0],
         length: 1.1,
         cap: 0.38,
@@ -470,8 +471,8 @@ pub fn directed_quadruped(level: u32, pose: Pose, noise: f64, seed: u64) -> Crea
         Limb { direction: [0.0, 0.45, 1.0], axis: [0.0, 0.35, 1.0], length: 0.6, cap: 0.5, bend: if walking { 0.6 } else { 0.0 }, bend_axis: [0.0, 1.0, 0.0] },
         Limb { direction: [0.0, 0.25, -1.0], axis: [0.0, 0.3, -1.0], length: 0.9, cap: 0.22, bend: if walking { -0.7 } else { 0.0 }, bend_axis: x },
     ];
-    let paw = Some(Directed { forward: [0.0, 0.0, 1.0], knee: 0.6, toe: 0.6 });
-    creature_with(level, [0.5, 0.45, 1.0], &limbs, &[paw.clone(), paw.clone(), paw.clone(), paw], noise, seed)
+    let paw = Some(Directed { forward: [0.0, 0.0, 1.0], knee: 0.6, toe: 0.3 });
+    creature_with(level, [0.5, 0.45, 1.4], &limbs, &[paw.clone(), paw.clone(), paw.clone(), paw], noise, seed)
 }
 
 /// A long body with three identical directed spikes in a row along its back (limbs 0, 1, 2,
@@ -479,9 +480,9 @@ pub fn directed_quadruped(level: u32, pose: Pose, noise: f64, seed: u64) -> Crea
 /// ([`Creature::translation_truth`]), and the only global symmetry is the left–right mirror.
 pub fn spiked(level: u32, noise: f64, seed: u64) -> Creature {
     let spike = |z: f64| Limb { direction: [0.0, 1.0, z], axis: [0.0, 1.0, 0.0], length: 0.8, cap: 0.3, bend: 0.0, bend_axis: [1.0, 0.0, 0.0] };
-    let limbs = [spike(0.55), spike(0.0), spike(-0.55)];
-    let tip = Some(Directed { forward: [0.0, 0.0, 1.0], knee: 0.5, toe: 0.6 });
-    creature_with(level, [0.45, 0.4, 1.2], &limbs, &[tip.clone(), tip.clone(), tip], noise, seed)
+    let limbs = [spike(0.8), spike(0.0), spike(-0.8)];
+    let tip = Some(Directed { forward: [0.0, 0.0, 1.0], knee: 0.5, toe: 0.3 });
+    creature_with(level, [0.45, 0.4, 1.6], &limbs, &[tip.clone(), tip.clone(), tip], noise, seed)
 }
 
 /// The `4·arms − 1` non-trivial symmetries of [`star`] as vertex maps, named. The star is
