@@ -298,9 +298,9 @@ fn run(cli: Cli) -> Result<(), intrinsym::Error> {
             if let Some(path) = report {
                 let title = format!("intrinsym: {}", input.display());
                 let text = if path.extension().is_some_and(|e| e == "html" || e == "htm") {
-                    intrinsym::output::report::html(&det, &title)
+                    intrinsym::output::report::html(&det, &title, Some(&raw.vertices))
                 } else {
-                    intrinsym::output::report::svg(&det, &title)
+                    intrinsym::output::report::svg(&det, &title, Some(&raw.vertices))
                 };
                 std::fs::write(&path, text).map_err(|source| intrinsym::mesh::IoError::Os { path: path.clone(), source })?;
                 println!("  wrote {}", path.display());

@@ -255,7 +255,7 @@ fn json_report_has_the_documented_schema() {
     assert!(j["timings"]["congruence"].is_f64());
     assert_eq!(j["continuous"]["dimension"], 0);
     assert_eq!(s["map"].as_array().unwrap().len(), c.mesh.num_vertices());
-    let svg = intrinsym::output::report::svg(&d, "test");
+    let svg = intrinsym::output::report::svg(&d, "test", None);
     assert!(svg.starts_with("<svg") && svg.contains("symmetry space"));
 }
 
@@ -623,10 +623,15 @@ fn directed_legs_map_onto_each_other_with_the_parts_stage() {
     assert!(mirror > 0.9 && d.symmetries[0].kind == Kind::Global, "first symmetry: mirror acc {mirror}");
     let first_partial = d.symmetries.iter().position(|s| s.kind == Kind::Partial).expect("partial symmetries");
     assert!(d.symmetries[first_partial..].iter().all(|s| s.kind == Kind::Partial));
+    let partial = d.symmetries.iter().filter(|s| s.kind == Kind::Partial).count();
     for s in d.symmetries.iter().filter(|s| s.kind == Kind::Partial) {
-        // −1 outside the region, an involution on it.
+        // −1 outside the region, a part of the surface.
         let region: Vec<usize> = (0..s.map.len()).filter(|&v| s.map[v] >= 0).collect();
         assert_eq!(region.len(), s.region_size);
         assert!(region.len() < c.mesh.num_vertices() / 2);
     }
+    // The report shows each partial symmetry's region (orange) and image (blue).
+    let svg = intrinsym::output::report::svg(&d, "directed", Some(&c.mesh.vertices));
+    assert_eq!(svg.matches(" partial: ").count(), partial);
+    assert!(svg.contains("rgb(230,120,0)") && svg.contains("rgb(30,90,220)"));
 }

@@ -1,6 +1,8 @@
 //! A picture of the result: the paper's 1-D symmetry space (each symmetry a point at its
 //! complexity on a line, coloured by group) above a heatmap of each functional map `C`
-//! (blue negative, red positive, white zero). SVG, or SVG inside a small HTML page with a table.
+//! (blue negative, red positive, white zero), and, given the vertices, where each partial
+//! symmetry goes: its region (orange) and its image (blue) on a projection of the shape (onto
+//! its two widest coordinate axes). SVG, or SVG inside a small HTML page with a table.
 
 use std::fmt::Write;
 
@@ -11,14 +13,20 @@ fn rgb(c: [u8; 3]) -> String {
     format!("rgb({},{},{})", c[0], c[1], c[2])
 }
 
-/// The report as an SVG document.
-pub fn svg(det: &Detection, title: &str) -> String {
+/// The report as an SVG document; with the mesh's `vertices` (input indices), one more panel
+/// per partial symmetry showing which part maps to which.
+pub fn svg(det: &Detection, title: &str, vertices: Option<&[[f64; 3]]>) -> String {
     let n = det.symmetries.len();
     let cols = 4usize;
     let cell = 150.0;
     let rows = n.div_ceil(cols).max(1);
+    let partial: Vec<usize> = match vertices {
+        Some(v) if v.len() == det.vertices => (0..n).filter(|&i| det.symmetries[i].kind == crate::detect::Kind::Partial).collect(),
+        _ => Vec::new(),
+    };
+    let region_rows = partial.len().div_ceil(cols);
     let width = 40.0 + cols as f64 * (cell + 30.0);
-    let height = 185.0 + rows as f64 * (cell + 60.0);
+    let height = 185.0 + (rows + region_rows) as f64 * (cell + 60.0);
     let mut s = String::new();
     let _ = write!(
         s,
@@ -71,14 +79,55 @@ pub fn svg(det: &Detection, title: &str) -> String {
     if n == 0 {
         let _ = write!(s, r#"<text x="40" y="170">no symmetry found</text>"#);
     }
+    if let Some(vertices) = vertices.filter(|_| !partial.is_empty()) {
+        let top = 165.0 + rows as f64 * (cell + 60.0);
+        regions(&mut s, det, &partial, vertices, top, cols, cell);
+    }
     s.push_str("</svg>\n");
     s
 }
 
+/// Panels of the partial symmetries `which`: every vertex (at most about 4,000 drawn) on the
+/// projection onto the two widest coordinate axes, grey; the region's source side orange,
+/// its image blue (an involution on both sides: a vertex is on the source side when it is
+/// nearer the source seed than its image is).
+fn regions(s: &mut String, det: &Detection, which: &[usize], vertices: &[[f64; 3]], top: f64, cols: usize, cell: f64) {
+    let (lo, hi) = vertices.iter().fold(([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]), |(lo, hi), p| (std::array::from_fn(|d| lo[d].min(p[d])), std::array::from_fn(|d| hi[d].max(p[d]))));
+    let mut axes = [0usize, 1, 2];
+    axes.sort_by(|&a, &b| (hi[b] - lo[b]).total_cmp(&(hi[a] - lo[a])));
+    let (u, v) = (axes[0], axes[1]);
+    let span = (hi[u] - lo[u]).max(hi[v] - lo[v]).max(1e-12);
+    let at = |p: &[f64; 3]| ((p[u] - lo[u]) / span * (cell - 10.0) + 5.0, (hi[v] - p[v]) / span * (cell - 10.0) + 5.0);
+    let stride = vertices.len().div_ceil(4000).max(1);
+    let d2 = |a: &[f64; 3], b: &[f64; 3]| (0..3).map(|d| (a[d] - b[d]).powi(2)).sum::<f64>();
+    for (slot, &i) in which.iter().enumerate() {
+        let sym = &det.symmetries[i];
+        let (ox, oy) = (20.0 + (slot % cols) as f64 * (cell + 30.0), top + (slot / cols) as f64 * (cell + 60.0));
+        let _ = write!(s, r#"<text x="{ox}" y="{:.1}">#{i} partial: {} vertices</text><text x="{ox}" y="{:.1}" fill="rgb(230,120,0)">region</text><text x="{:.1}" y="{:.1}" fill="rgb(30,90,220)">→ image</text>"#, oy - 20.0, sym.region_size, oy - 6.0, ox + 50.0, oy - 6.0);
+        let (src, dst) = (&vertices[sym.source.min(vertices.len() - 1)], &vertices[sym.target.min(vertices.len() - 1)]);
+        for (w, p) in vertices.iter().enumerate() {
+            let m = sym.map[w];
+            let colour = if m < 0 || m as usize >= vertices.len() {
+                if w % stride != 0 {
+                    continue;
+                }
+                "rgb(200,200,200)"
+            } else if d2(p, src) - d2(p, dst) <= d2(&vertices[m as usize], src) - d2(&vertices[m as usize], dst) {
+                "rgb(230,120,0)"
+            } else {
+                "rgb(30,90,220)"
+            };
+            let (x, y) = at(p);
+            let _ = write!(s, r#"<circle cx="{:.1}" cy="{:.1}" r="0.9" fill="{colour}"/>"#, ox + x, oy + y);
+        }
+        let _ = write!(s, r#"<rect x="{ox}" y="{oy}" width="{cell}" height="{cell}" fill="none" stroke="black"/>"#);
+    }
+}
+
 /// The report as an HTML page: the SVG and a table of the symmetries.
-pub fn html(det: &Detection, title: &str) -> String {
+pub fn html(det: &Detection, title: &str, vertices: Option<&[[f64; 3]]>) -> String {
     let mut s = format!("<!DOCTYPE html><html><head><meta charset=\"utf-8\"><title>{0}</title></head><body><h1>{0}</h1>\n", escape(title));
-    s.push_str(&svg(det, title));
+    s.push_str(&svg(det, title, vertices));
     s.push_str("<table border=\"1\" cellpadding=\"4\"><tr><th>#</th><th>kind</th><th>group</th><th>order</th><th>complexity</th><th>distortion</th><th>region</th><th>seed</th></tr>\n");
     for (i, sym) in det.symmetries.iter().enumerate() {
         let _ = writeln!(
