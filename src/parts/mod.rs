@@ -216,6 +216,17 @@ fn tips(graph: &EdgeGraph, agd: &[f64], rho: f64, max: usize) -> Vec<usize> {
 /// at the radius). `scratch` (one entry per vertex) is all infinite on entry and on return.
 pub(crate) fn ball(graph: &EdgeGraph, src: usize, radius: f64, scratch: &mut [f64]) -> Vec<(u32, f64)> {
     let mut out = Vec::new();
+    search(graph, src, radius, scratch, &mut |v, d| {
+        out.push((v as u32, d));
+        true
+    });
+    out
+}
+
+/// Dijkstra from `src` up to `radius`, calling `settled(vertex, distance)` in order of distance
+/// until it returns `false`. `scratch` (one entry per vertex) is all infinite on entry and on
+/// return.
+fn search(graph: &EdgeGraph, src: usize, radius: f64, scratch: &mut [f64], settled: &mut dyn FnMut(usize, f64) -> bool) {
     let mut touched = vec![src as u32];
     let mut heap = BinaryHeap::new();
     scratch[src] = 0.0;
@@ -225,7 +236,9 @@ pub(crate) fn ball(graph: &EdgeGraph, src: usize, radius: f64, scratch: &mut [f6
         if dv > scratch[v] {
             continue;
         }
-        out.push((v as u32, dv));
+        if !settled(v, dv) {
+            break;
+        }
         for e in graph.off[v]..graph.off[v + 1] {
             let u = graph.nbr[e] as usize;
             let nd = dv + graph.len[e];
@@ -241,7 +254,6 @@ pub(crate) fn ball(graph: &EdgeGraph, src: usize, radius: f64, scratch: &mut [f6
     for v in touched {
         scratch[v as usize] = f64::INFINITY;
     }
-    out
 }
 
 /// Cumulative area within `step`, `2·step`, … of a ball's centre.
@@ -267,15 +279,20 @@ fn agreeing_radius(a: &[f64], b: &[f64], step: f64, tolerance: f64, slack: f64) 
 }
 
 /// Distances from `src` to the vertices of a region (`local[v]` = index in the region or
-/// `u32::MAX`), infinite for those farther than `radius`.
+/// `u32::MAX`), infinite for those farther than `radius`. The search stops once every vertex
+/// of the region is settled (the ball of `radius` around a vertex inside the region is
+/// usually much larger than the region).
 fn column(graph: &EdgeGraph, src: usize, radius: f64, local: &[u32], size: usize, scratch: &mut [f64]) -> Vec<f64> {
     let mut col = vec![f64::INFINITY; size];
-    for (v, d) in ball(graph, src, radius, scratch) {
-        let i = local[v as usize];
+    let mut left = size;
+    search(graph, src, radius, scratch, &mut |v, d| {
+        let i = local[v];
         if i != u32::MAX {
             col[i as usize] = d;
+            left -= 1;
         }
-    }
+        left > 0
+    });
     col
 }
 
@@ -315,13 +332,18 @@ fn part_map(graph: &EdgeGraph, weights: &[f64], p: usize, q: usize, radius: f64,
     }
     let variants = anchor_pairs(graph, &a, &b, radius, params, &mut scratch)?;
     // The variant whose map A → B fits the anchors' distances better over all of A.
-    let fit = |v: &Anchored| {
-        let (_, cost) = dense_map(&v.cols_a, &v.cols_b, &a.from_tip, &b.from_tip, 0.25 * radius);
-        let finite: Vec<f64> = cost.into_iter().filter(|c| c.is_finite()).collect();
+    let fit = |cost: &[f64]| {
+        let finite: Vec<f64> = cost.iter().copied().filter(|c| c.is_finite()).collect();
         finite.iter().sum::<f64>() / finite.len().max(1) as f64
     };
-    let anchored = variants.iter().min_by(|x, y| fit(x).total_cmp(&fit(y)))?;
-    grow_map(graph, weights, &a, &b, anchored, radius, globals, scale, params)
+    let (anchored, forward) = variants
+        .into_iter()
+        .map(|v| {
+            let forward = dense_map(&v.cols_a, &v.cols_b, &a.from_tip, &b.from_tip, 0.25 * radius);
+            (v, forward)
+        })
+        .min_by(|x, y| fit(&x.1 .1).total_cmp(&fit(&y.1 .1)))?;
+    grow_map(graph, weights, &a, &b, &anchored, forward, radius, globals, scale, params)
 }
 
 /// Anchors of a region pair (step 3 of the module docs): `pairs` of region indices (A, B),
@@ -457,15 +479,16 @@ fn anchor_pairs(graph: &EdgeGraph, a: &Region, b: &Region, radius: f64, params: 
     Some(variants)
 }
 
-/// The maps A → B and B → A from the anchors, grown from the tips (step 4), checked for
-/// balance and against the global maps; the partial symmetry.
+/// The maps A → B (`forward`: images and mismatches, computed by the caller) and B → A from
+/// the anchors, grown from the tips (step 4), checked for balance and against the global
+/// maps; the partial symmetry.
 #[allow(clippy::too_many_arguments)]
-fn grow_map(graph: &EdgeGraph, weights: &[f64], a: &Region, b: &Region, anchored: &Anchored, radius: f64, globals: &[&[i64]], scale: f64, params: &PartParams) -> Option<PartMap> {
+fn grow_map(graph: &EdgeGraph, weights: &[f64], a: &Region, b: &Region, anchored: &Anchored, forward: (Vec<usize>, Vec<f64>), radius: f64, globals: &[&[i64]], scale: f64, params: &PartParams) -> Option<PartMap> {
     let n = graph.off.len() - 1;
     let (p, q) = (a.vertices[0], b.vertices[0]);
     let Anchored { pairs, cols_a: cols_a_all, cols_b } = anchored;
     let window = 0.25 * radius;
-    let (forward, fwd_mismatch) = dense_map(&cols_a_all, &cols_b, &a.from_tip, &b.from_tip, window);
+    let (forward, fwd_mismatch) = forward;
     let (backward, bwd_mismatch) = dense_map(&cols_b, &cols_a_all, &b.from_tip, &a.from_tip, window);
     let accept = params.accept * scale;
     // A vertex is kept where the map fits (mismatch) and the round trip A → B → A comes back
@@ -549,23 +572,34 @@ fn grow_map(graph: &EdgeGraph, weights: &[f64], a: &Region, b: &Region, anchored
 /// their tip (`tip_b`, ascending) is within `window` of `x`'s (`tip_a`); anchors unreached
 /// (infinite) at a vertex are left out there.
 fn dense_map(cols_a: &[Vec<f64>], cols_b: &[Vec<f64>], tip_a: &[f64], tip_b: &[f64], window: f64) -> (Vec<usize>, Vec<f64>) {
-    let na = tip_a.len();
+    let (na, m) = (tip_a.len(), cols_a.len());
+    // Row-major copies (a vertex's distances to the anchors contiguous): the inner loop below
+    // runs over the anchors.
+    let rows = |cols: &[Vec<f64>], n: usize| {
+        let mut t = vec![0.0; n * m];
+        for (k, col) in cols.iter().enumerate() {
+            for (i, &d) in col.iter().enumerate() {
+                t[i * m + k] = d;
+            }
+        }
+        t
+    };
+    let (ta, tb) = (rows(cols_a, na), rows(cols_b, tip_b.len()));
     let mut image = vec![0; na];
     let mut cost = vec![f64::INFINITY; na];
     for x in 0..na {
         let lo = tip_b.partition_point(|&d| d < tip_a[x] - window);
         let hi = tip_b.partition_point(|&d| d <= tip_a[x] + window);
+        let ra = &ta[x * m..(x + 1) * m];
         for y in lo..hi {
-            let mut sum = 0.0;
-            let mut used = 0;
-            for (ca, cb) in cols_a.iter().zip(cols_b) {
-                let (u, w) = (ca[x], cb[y]);
-                if u.is_finite() && w.is_finite() {
-                    sum += (u - w).abs();
-                    used += 1;
-                }
+            let rb = &tb[y * m..(y + 1) * m];
+            let (mut sum, mut used) = (0.0, 0usize);
+            for (&u, &w) in ra.iter().zip(rb) {
+                let ok = u.is_finite() & w.is_finite();
+                sum += if ok { (u - w).abs() } else { 0.0 };
+                used += usize::from(ok);
             }
-            if used * 2 >= cols_a.len() {
+            if used * 2 >= m {
                 let c = sum / used as f64;
                 if c < cost[x] {
                     cost[x] = c;
