@@ -7,7 +7,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #define SYM_VERSION_MAJOR 0
-#define SYM_VERSION_MINOR 4
+#define SYM_VERSION_MINOR 5
 #define SYM_VERSION_PATCH 0
 
 
@@ -345,6 +345,13 @@ sym_status sym_params_set_weld(sym_params *params, int value);
  */
 sym_status sym_params_set_reject_disconnected(sym_params *params,
                                               int value);
+
+/**
+ * Nonzero: also look for partial symmetries between repeated parts that no global symmetry
+ * carries (a front paw onto a hind paw; experimental, default 0; added in 0.5). Each is
+ * reported after the global symmetries, `kind` partial, its map −1 outside the two parts.
+ */
+sym_status sym_params_set_parts(sym_params *params, int value);
 
 /**
  * Detects the intrinsic symmetries of a triangle mesh.

@@ -348,6 +348,14 @@ pub extern "C" fn sym_params_set_reject_disconnected(params: *mut sym_params, va
     set(params, "sym_params_set_reject_disconnected", "any", true, value, |p| p.mesh.components = if value != 0 { ComponentPolicy::Reject } else { ComponentPolicy::Each })
 }
 
+/// Nonzero: also look for partial symmetries between repeated parts that no global symmetry
+/// carries (a front paw onto a hind paw; experimental, default 0; added in 0.5). Each is
+/// reported after the global symmetries, `kind` partial, its map −1 outside the two parts.
+#[no_mangle]
+pub extern "C" fn sym_params_set_parts(params: *mut sym_params, value: c_int) -> sym_status {
+    set(params, "sym_params_set_parts", "any", true, value, |p| p.params.parts.enabled = value != 0)
+}
+
 /// Detects the intrinsic symmetries of a triangle mesh.
 ///
 /// `vertices`: `3 * num_vertices` doubles, row-major (x, y, z); `triangles`: `3 * num_triangles`

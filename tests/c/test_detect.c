@@ -97,6 +97,26 @@ int main(int argc, char **argv) {
         free(t2);
         sym_free(r);
     }
+    {
+        /* Partial symmetries between repeated parts (added in 0.5): after every global one. */
+        size_t partial = 0;
+        CHECK(sym_params_set_parts(NULL, 1) == SYM_STATUS_NULL_PARAMETER, "parts: NULL params");
+        CHECK(sym_params_set_parts(p, 1) == SYM_STATUS_OK, "parts");
+        CHECK(sym_detect(m.v, m.nv, m.t, m.nt, p, NULL, NULL, &r) == SYM_STATUS_OK, "detect with parts");
+        for (i = 0; i < sym_count(r); i++) {
+            sym_symmetry t;
+            memset(&t, 0, sizeof t);
+            t.struct_size = sizeof t;
+            CHECK(sym_get_map(r, i, &t) == SYM_STATUS_OK, "get_map %zu", i);
+            if (t.kind == SYM_KIND_PARTIAL) partial++;
+            else CHECK(partial == 0, "global symmetry %zu after a partial one", i);
+        }
+        memset(&s, 0, sizeof s);
+        s.struct_size = sizeof s;
+        CHECK(sym_get_map(r, 0, &s) == SYM_STATUS_OK && s.kind == SYM_KIND_GLOBAL, "first symmetry global with parts");
+        printf("with parts: %zu symmetries, %zu partial\n", sym_count(r), partial);
+        sym_free(r);
+    }
     sym_params_free(p);
     free_mesh(&m);
     printf("test_detect: ok\n");
