@@ -1021,8 +1021,8 @@ fn pipeline(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool)
         for m in parts.into_iter().take(room) {
             let distortion = characterize::sample_distortion(&m.dense.map, probes, emb, vinfo.diameter);
             let complexity = characterize::complexity(&maps::functional_map(basis, &m.dense.map, params.maps.fmap_size), params.complexity_width);
-            let verdict = verdict(&m.dense);
-            found.push(Found { dense: m.dense, part: true, seed: m.tips, distortion, complexity, verdict });
+            let judged = verdict(&m.dense);
+            found.push(Found { dense: m.dense, part: true, seed: m.tips, distortion, complexity, verdict: judged });
         }
     }
     drop(geodesics);

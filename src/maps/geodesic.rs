@@ -208,25 +208,47 @@ impl EdgeGraph {
     fn distances_heap(&self, src: usize) -> Vec<f64> {
         let n = self.off.len() - 1;
         let mut d = vec![f64::INFINITY; n];
+        let mut scratch = vec![f64::INFINITY; n];
+        self.search(src, f64::INFINITY, &mut scratch, &mut |v, dv| {
+            d[v] = dv;
+            true
+        });
+        d
+    }
+
+    /// Dijkstra from `src` up to `radius` (a binary heap), calling `settled(vertex, distance)`
+    /// in order of distance until it returns `false`. `scratch` (one entry per vertex) is all
+    /// infinite on entry and on return, so a caller searching many small balls pays for the
+    /// vertices reached only.
+    pub(crate) fn search(&self, src: usize, radius: f64, scratch: &mut [f64], settled: &mut dyn FnMut(usize, f64) -> bool) {
+        let mut touched = vec![src as u32];
         let mut heap = BinaryHeap::new();
-        d[src] = 0.0;
+        scratch[src] = 0.0;
         // Non-negative f64s order like their bit patterns.
         heap.push(Reverse((0u64, src as u32)));
         while let Some(Reverse((key, v))) = heap.pop() {
             let (dv, v) = (f64::from_bits(key), v as usize);
-            if dv > d[v] {
+            if dv > scratch[v] {
                 continue;
+            }
+            if !settled(v, dv) {
+                break;
             }
             for e in self.off[v]..self.off[v + 1] {
                 let u = self.nbr[e] as usize;
                 let nd = dv + self.len[e];
-                if nd < d[u] {
-                    d[u] = nd;
+                if nd <= radius && nd < scratch[u] {
+                    if scratch[u] == f64::INFINITY {
+                        touched.push(u as u32);
+                    }
+                    scratch[u] = nd;
                     heap.push(Reverse((nd.to_bits(), u as u32)));
                 }
             }
         }
-        d
+        for v in touched {
+            scratch[v as usize] = f64::INFINITY;
+        }
     }
 }
 

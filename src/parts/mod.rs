@@ -91,9 +91,6 @@
 //!   against ground truth (shared/data has none for parts).
 //! - Region growth uses one absolute tolerance (`accept`·√area) whatever the part's size.
 
-use std::cmp::Reverse;
-use std::collections::BinaryHeap;
-
 use crate::maps::geodesic::EdgeGraph;
 use crate::maps::DenseMap;
 
@@ -216,44 +213,11 @@ fn tips(graph: &EdgeGraph, agd: &[f64], rho: f64, max: usize) -> Vec<usize> {
 /// at the radius). `scratch` (one entry per vertex) is all infinite on entry and on return.
 pub(crate) fn ball(graph: &EdgeGraph, src: usize, radius: f64, scratch: &mut [f64]) -> Vec<(u32, f64)> {
     let mut out = Vec::new();
-    search(graph, src, radius, scratch, &mut |v, d| {
+    graph.search(src, radius, scratch, &mut |v, d| {
         out.push((v as u32, d));
         true
     });
     out
-}
-
-/// Dijkstra from `src` up to `radius`, calling `settled(vertex, distance)` in order of distance
-/// until it returns `false`. `scratch` (one entry per vertex) is all infinite on entry and on
-/// return.
-fn search(graph: &EdgeGraph, src: usize, radius: f64, scratch: &mut [f64], settled: &mut dyn FnMut(usize, f64) -> bool) {
-    let mut touched = vec![src as u32];
-    let mut heap = BinaryHeap::new();
-    scratch[src] = 0.0;
-    heap.push(Reverse((0u64, src as u32)));
-    while let Some(Reverse((key, v))) = heap.pop() {
-        let (dv, v) = (f64::from_bits(key), v as usize);
-        if dv > scratch[v] {
-            continue;
-        }
-        if !settled(v, dv) {
-            break;
-        }
-        for e in graph.off[v]..graph.off[v + 1] {
-            let u = graph.nbr[e] as usize;
-            let nd = dv + graph.len[e];
-            if nd <= radius && nd < scratch[u] {
-                if scratch[u] == f64::INFINITY {
-                    touched.push(u as u32);
-                }
-                scratch[u] = nd;
-                heap.push(Reverse((nd.to_bits(), u as u32)));
-            }
-        }
-    }
-    for v in touched {
-        scratch[v as usize] = f64::INFINITY;
-    }
 }
 
 /// Cumulative area within `step`, `2·step`, … of a ball's centre.
@@ -285,7 +249,7 @@ fn agreeing_radius(a: &[f64], b: &[f64], step: f64, tolerance: f64, slack: f64) 
 fn column(graph: &EdgeGraph, src: usize, radius: f64, local: &[u32], size: usize, scratch: &mut [f64]) -> Vec<f64> {
     let mut col = vec![f64::INFINITY; size];
     let mut left = size;
-    search(graph, src, radius, scratch, &mut |v, d| {
+    graph.search(src, radius, scratch, &mut |v, d| {
         let i = local[v];
         if i != u32::MAX {
             col[i as usize] = d;
