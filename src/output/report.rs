@@ -87,7 +87,7 @@ pub fn svg(det: &Detection, title: &str, vertices: Option<&[[f64; 3]]>) -> Strin
     s
 }
 
-/// Panels of the partial symmetries `which`: every vertex (at most about 4,000 drawn) on the
+/// Panels of the partial symmetries `which`: the vertices (every k-th, about 4,000 drawn) on the
 /// projection onto the two widest coordinate axes, grey; the region's source side orange,
 /// its image blue (an involution on both sides: a vertex is on the source side when it is
 /// nearer the source seed than its image is).
@@ -106,11 +106,11 @@ fn regions(s: &mut String, det: &Detection, which: &[usize], vertices: &[[f64; 3
         let _ = write!(s, r#"<text x="{ox}" y="{:.1}">#{i} partial: {} vertices</text><text x="{ox}" y="{:.1}" fill="rgb(230,120,0)">region</text><text x="{:.1}" y="{:.1}" fill="rgb(30,90,220)">→ image</text>"#, oy - 20.0, sym.region_size, oy - 6.0, ox + 50.0, oy - 6.0);
         let (src, dst) = (&vertices[sym.source.min(vertices.len() - 1)], &vertices[sym.target.min(vertices.len() - 1)]);
         for (w, p) in vertices.iter().enumerate() {
+            if w % stride != 0 {
+                continue;
+            }
             let m = sym.map[w];
             let colour = if m < 0 || m as usize >= vertices.len() {
-                if w % stride != 0 {
-                    continue;
-                }
                 "rgb(200,200,200)"
             } else if d2(p, src) - d2(p, dst) <= d2(&vertices[m as usize], src) - d2(&vertices[m as usize], dst) {
                 "rgb(230,120,0)"

@@ -8,7 +8,9 @@
 //! - [`creature`]: mirror-symmetric animals built on the icosphere (whose vertex set is exactly
 //!   symmetric under x → −x, so every vertex's true mirror image is known), optionally posed
 //!   (limbs rotated with smooth skinning) and noised (normal displacement), with ground truth:
-//!   [`quadruped`] (4 legs, head, tail) and [`star`] (n arms in a plane);
+//!   [`quadruped`] (4 legs, head, tail) and [`star`] (n arms in a plane), and, with directed
+//!   limbs ([`creature_with`]), [`directed_quadruped`] and [`spiked`], whose repeated parts map
+//!   onto each other by translations no global symmetry carries;
 //! - [`subdivide`]: a mesh with every triangle split in four at its edge midpoints (the same
 //!   surface at 4× the triangles), for scaling a shape with ground truth to benchmark sizes.
 //!
