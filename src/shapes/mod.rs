@@ -426,25 +426,32 @@ pub enum Pose {
 /// in x at rest. Limbs 0..4 are the legs (front-left, front-right, hind-left, hind-right),
 /// 4 the head, 5 the tail. `level` 5 gives 10,242 vertices.
 pub fn quadruped(level: u32, pose: Pose, noise: f64, seed: u64) -> Creature {
+    let limbs = quadruped_limbs(pose, 0.55, [0.5, -0.3, -0.4, 0.35]);
+    creature(level, [0.5, 0.45, 1.0], &limbs, noise, seed)
+}
+
+/// The six limbs of a quadruped: four legs (front-left, front-right, hind-left, hind-right)
+/// growing straight down from caps at `±0.55` across and `±along` front to back on the unit
+/// sphere, swung by `swings` when walking, then the head and the tail.
+fn quadruped_limbs(pose: Pose, along: f64, swings: [f64; 4]) -> [Limb; 6] {
     let walking = pose == Pose::Walking;
     let x = [1.0, 0.0, 0.0];
     let leg = |sx: f64, sz: f64, bend: f64| Limb {
-        direction: [0.55 * sx, -0.75, 0.55 * sz],
+        direction: [0.55 * sx, -0.75, along * sz],
         axis: [0.0, -1.0, 0.0],
         length: 1.1,
         cap: 0.38,
         bend: if walking { bend } else { 0.0 },
         bend_axis: x,
     };
-    let limbs = [
-        leg(1.0, 1.0, 0.5),
-        leg(-1.0, 1.0, -0.3),
-        leg(1.0, -1.0, -0.4),
-        leg(-1.0, -1.0, 0.35),
+    [
+        leg(1.0, 1.0, swings[0]),
+        leg(-1.0, 1.0, swings[1]),
+        leg(1.0, -1.0, swings[2]),
+        leg(-1.0, -1.0, swings[3]),
         Limb { direction: [0.0, 0.45, 1.0], axis: [0.0, 0.35, 1.0], length: 0.6, cap: 0.5, bend: if walking { 0.6 } else { 0.0 }, bend_axis: [0.0, 1.0, 0.0] },
         Limb { direction: [0.0, 0.25, -1.0], axis: [0.0, 0.3, -1.0], length: 0.9, cap: 0.22, bend: if walking { -0.7 } else { 0.0 }, bend_axis: x },
-    ];
-    creature(level, [0.5, 0.45, 1.0], &limbs, noise, seed)
+    ]
 }
 
 /// A four-legged animal like [`quadruped`] whose four identical legs are *directed* (knee
@@ -455,24 +462,9 @@ pub fn quadruped(level: u32, pose: Pose, noise: f64, seed: u64) -> Creature {
 /// hind-left, hind-right), 4 the head, 5 the tail. `Pose::Walking` swings the legs as in
 /// [`quadruped`]. `level` 4 gives 2,562 vertices, 5 gives 10,242.
 pub fn directed_quadruped(level: u32, pose: Pose, noise: f64, seed: u64) -> Creature {
-    let walking = pose == Pose::Walking;
-    let x = [1.0, 0.0, 0.0];
-    let leg = |sx: f64, sz: f64, bend: f64| Limb {
-        direction: [0.55 * sx, -0.75, 0.35 * sz],
-        axis: [0.0, -1.0, 0.0],
-        length: 1.1,
-        cap: 0.38,
-        bend: if walking { bend } else { 0.0 },
-        bend_axis: x,
-    };
-    let limbs = [
-        leg(1.0, 1.0, 0.4),
-        leg(-1.0, 1.0, -0.3),
-        leg(1.0, -1.0, -0.35),
-        leg(-1.0, -1.0, 0.3),
-        Limb { direction: [0.0, 0.45, 1.0], axis: [0.0, 0.35, 1.0], length: 0.6, cap: 0.5, bend: if walking { 0.6 } else { 0.0 }, bend_axis: [0.0, 1.0, 0.0] },
-        Limb { direction: [0.0, 0.25, -1.0], axis: [0.0, 0.3, -1.0], length: 0.9, cap: 0.22, bend: if walking { -0.7 } else { 0.0 }, bend_axis: x },
-    ];
+    // Legs nearer the middle (a longer body, below): the body around a leg's base is nearly
+    // the same front and back.
+    let limbs = quadruped_limbs(pose, 0.35, [0.4, -0.3, -0.35, 0.3]);
     let paw = Some(Directed { forward: [0.0, 0.0, 1.0], knee: 0.6, toe: 0.3 });
     creature_with(level, [0.5, 0.45, 1.4], &limbs, &[paw.clone(), paw.clone(), paw.clone(), paw], noise, seed)
 }
