@@ -322,7 +322,6 @@ struct Anchored {
 /// farthest-point samples of A placed by the anchors before them, then each again by all
 /// the others; for the best ring pair and the best flipped one.
 fn anchor_pairs(graph: &EdgeGraph, a: &Region, b: &Region, radius: f64, params: &PartParams, scratch: &mut [f64]) -> Option<Vec<Anchored>> {
-    let mut scratch = scratch;
     let far = 2.0 * radius;
     let col_a = |s: usize, scratch: &mut [f64]| column(graph, s, far, &a.local, a.len(), scratch);
     let col_b = |s: usize, scratch: &mut [f64]| column(graph, s, far, &b.local, b.len(), scratch);
@@ -336,10 +335,10 @@ fn anchor_pairs(graph: &EdgeGraph, a: &Region, b: &Region, radius: f64, params: 
         return None;
     }
     let a1 = *ring_a.iter().min_by(|&&x, &&y| (a.from_tip[x] - ring_radius).abs().total_cmp(&(a.from_tip[y] - ring_radius).abs()))?;
-    let d_a1 = col_a(a.vertices[a1], &mut scratch);
+    let d_a1 = col_a(a.vertices[a1], scratch);
     let quarter = ring_a.iter().map(|&x| d_a1[x]).filter(|d| d.is_finite()).fold(0.0, f64::max) / 2.0;
     let a2 = *ring_a.iter().min_by(|&&x, &&y| (d_a1[x] - quarter).abs().total_cmp(&(d_a1[y] - quarter).abs()))?;
-    let d_a2 = col_a(a.vertices[a2], &mut scratch);
+    let d_a2 = col_a(a.vertices[a2], scratch);
     // Farthest-point samples of A from the tip (the tip's column is its distances).
     let mut anchors_a: Vec<usize> = vec![0];
     let mut cols_a: Vec<Vec<f64>> = vec![a.from_tip.clone()];
@@ -349,7 +348,7 @@ fn anchor_pairs(graph: &EdgeGraph, a: &Region, b: &Region, radius: f64, params: 
         if *d <= 0.0 || !d.is_finite() {
             break;
         }
-        let col = col_a(a.vertices[next], &mut scratch);
+        let col = col_a(a.vertices[next], scratch);
         for (m, c) in nearest.iter_mut().zip(&col) {
             *m = m.min(*c);
         }
@@ -359,25 +358,19 @@ fn anchor_pairs(graph: &EdgeGraph, a: &Region, b: &Region, radius: f64, params: 
     // Candidate partners of a1 and a2 on B's ring (at most 48, evenly spread in index order).
     let stride = ring_b.len().div_ceil(48);
     let ring_b: Vec<usize> = ring_b.into_iter().step_by(stride).collect();
-    let cols_ring: Vec<Vec<f64>> = ring_b.iter().map(|&y| col_b(b.vertices[y], &mut scratch)).collect();
-    // The three-anchor fit of a candidate (b1, b2): how well profiles place A's samples, and
-    // where it places them.
-    let fit = |cb1: &[f64], cb2: &[f64]| -> (f64, Vec<usize>) {
-        let mut total = 0.0;
-        let images = anchors_a[1..]
+    let cols_ring: Vec<Vec<f64>> = ring_b.iter().map(|&y| col_b(b.vertices[y], scratch)).collect();
+    // The three-anchor fit of a candidate (b1, b2): how well profiles place A's samples.
+    let fit = |cb1: &[f64], cb2: &[f64]| -> f64 {
+        anchors_a[1..]
             .iter()
             .map(|&s| {
                 let want = [a.from_tip[s], d_a1[s], d_a2[s]];
-                let cost = |y: usize| (want[0] - b.from_tip[y]).abs() + (want[1] - cb1[y]).abs() + (want[2] - cb2[y]).abs();
-                let y = (0..b.len()).min_by(|&y, &z| cost(y).total_cmp(&cost(z))).unwrap_or(0);
-                total += cost(y);
-                y
+                (0..b.len()).map(|y| (want[0] - b.from_tip[y]).abs() + (want[1] - cb1[y]).abs() + (want[2] - cb2[y]).abs()).fold(f64::INFINITY, f64::min)
             })
-            .collect();
-        (total, images)
+            .sum::<f64>()
     };
     let d12 = d_a1[a2];
-    let mut candidates: Vec<(f64, usize, usize, Vec<usize>)> = Vec::new();
+    let mut candidates: Vec<(f64, usize, usize)> = Vec::new();
     for (i, cb1) in cols_ring.iter().enumerate() {
         if (b.from_tip[ring_b[i]] - a.from_tip[a1]).abs() > width {
             continue;
@@ -387,8 +380,7 @@ fn anchor_pairs(graph: &EdgeGraph, a: &Region, b: &Region, radius: f64, params: 
             if i == j || (cb1[ring_b[j]] - d12).abs() > width {
                 continue;
             }
-            let (f, images) = fit(cb1, cb2);
-            candidates.push((f, i, j, images));
+            candidates.push((fit(cb1, cb2), i, j));
         }
     }
     // The best fit, and the best that differs from it by more than a quarter-turn at a ring
@@ -396,7 +388,7 @@ fn anchor_pairs(graph: &EdgeGraph, a: &Region, b: &Region, radius: f64, params: 
     // fits its flipped version almost as well as the right one, and three anchors near the
     // tip cannot tell them apart): both are placed in full and the caller keeps the better.
     candidates.sort_by(|x, y| x.0.total_cmp(&y.0));
-    let (best_fit, bi, bj) = (candidates.first()?.0, candidates[0].1, candidates[0].2);
+    let (best_fit, bi, bj) = *candidates.first()?;
     let apart = |i: usize, j: usize| cols_ring[bi][ring_b[i]].max(cols_ring[bj][ring_b[j]]) >= 0.5 * ring_radius;
     let other = candidates.iter().find(|c| c.0 <= params.fit_slack * best_fit && apart(c.1, c.2)).map(|c| (c.1, c.2));
     let mut samples: Vec<usize> = (1..anchors_a.len()).collect();
@@ -426,7 +418,7 @@ fn anchor_pairs(graph: &EdgeGraph, a: &Region, b: &Region, radius: f64, params: 
             let s = anchors_a[k];
             let y = place(s, &cols_a_all, &cols_b, usize::MAX);
             pairs.push((s, y));
-            cols_b.push(col_b(b.vertices[y], &mut scratch));
+            cols_b.push(col_b(b.vertices[y], scratch));
             cols_a_all.push(cols_a[k].clone());
         }
         for _ in 0..2 {
@@ -434,7 +426,7 @@ fn anchor_pairs(graph: &EdgeGraph, a: &Region, b: &Region, radius: f64, params: 
                 let y = place(pairs[k].0, &cols_a_all, &cols_b, k);
                 if y != pairs[k].1 {
                     pairs[k].1 = y;
-                    cols_b[k] = col_b(b.vertices[y], &mut scratch);
+                    cols_b[k] = col_b(b.vertices[y], scratch);
                 }
             }
         }
