@@ -1130,6 +1130,14 @@ fn report(mesh: &Mesh, mesh_judge: &Judge, mut found: Vec<Found>, emb: &crate::d
             }
         })
         .collect();
+    // A map that brings 80% of the probes back to themselves in one step is the identity, not
+    // a symmetry (kept so far when its stencils flip: locally scrambled, globally fixed). Over
+    // shared/data no map of order 1 scored more than 12% acc@0.05 (the identity's chance
+    // score near the symmetry plane; 10 such maps in session 12's run, two of them reported
+    // first). Measured with a variant of the smoothing step (session 13, `docs/accuracy.md`),
+    // the filter cost 0.1 point of best over all 116 shapes (those chance scores) and gained
+    // 0.5 point of first.
+    symmetries.retain(|s| s.order != 1);
     timings.characterize = t.elapsed().as_secs_f64();
 
     let t = Instant::now();

@@ -324,13 +324,14 @@ fn the_judge_prefers_the_mirror_to_a_half_identity() {
 }
 
 /// A shape with no symmetry (limbs of different lengths in directions no map exchanges)
-/// gets no global symmetry.
+/// gets no global symmetry, and no map anywhere that is the identity (order 1).
 #[test]
 fn a_shape_without_symmetry_gets_no_global_symmetry() {
     let c = shapes::lopsided(4);
     let d = run(&c);
     let global: Vec<_> = d.symmetries.iter().filter(|s| s.kind == Kind::Global).map(|s| (s.verdict, s.distortion)).collect();
     assert!(global.is_empty(), "global symmetries reported: {global:?}");
+    assert!(d.symmetries.iter().all(|s| s.order != 1), "an identity reported");
 }
 
 /// A mesh whose triangles mix orientations (as users' meshes can) gets the same verdicts: the
@@ -347,7 +348,10 @@ fn mixed_triangle_orientations_do_not_change_the_verdict() {
     assert_eq!(a.symmetries.len(), b.symmetries.len());
     for (s, t) in a.symmetries.iter().zip(&b.symmetries) {
         assert_eq!(s.map, t.map);
-        assert!((s.verdict.score - t.verdict.score).abs() < 1e-12, "{:?} {:?}", s.verdict, t.verdict);
+        // The same maps; the score's distortion is measured in the biharmonic embedding, whose
+        // sums run in another order on the flipped triangles (differences of 3e-11 seen).
+        assert!((s.verdict.score - t.verdict.score).abs() < 1e-9, "{:?} {:?}", s.verdict, t.verdict);
+        assert_eq!((s.verdict.reversal, s.verdict.fixed, s.verdict.coverage), (t.verdict.reversal, t.verdict.fixed, t.verdict.coverage));
     }
 }
 

@@ -29,7 +29,9 @@
 //!    zoomout_k` (`C = (MΦ_k)ᵀ Φ_k[T]`, then every vertex to the nearest `Φ_k(v) C` by descent):
 //!    geodesic matching is vertex-wise and leaves small incoherent shifts where anchors are
 //!    sparse (extremities: the top of a head, feet), which the band-limited map does not have.
-//!    Mismatch, region and confidence are then judged on the smoothed map. So each pass
+//!    An involution's `C` is first replaced by its involution part (`C = Cᵀ`, `C² = I` on the
+//!    matched directions; [`super::zoomout`] gives the maths and the figures). Mismatch,
+//!    region and confidence are then judged on the smoothed map. So each pass
 //!    alternates an isometry step (geodesics) and a smoothness step (spectrum), as ZoomOut
 //!    alternates point and functional maps. (ZoomOut at k = 100 alone, started from TOSCA
 //!    david1's *true* map, keeps 99.2% of it within 0.05·√area: it does not blur a right map.)
@@ -543,10 +545,12 @@ pub fn try_polish(ctx: &Context<'_>, geodesics: &Geodesics, m: &DenseMap, sample
     // 4. Spectral smoothing of a global map: one ZoomOut step at the full size k (project the
     //    map on the first k eigenfunctions, C = (MΦ)ᵀΦ[T], and back). Geodesic matching is
     //    vertex-wise, so it leaves small incoherent shifts at extremities; the band-limited map
-    //    is smooth there. Then mismatch, region and confidence are judged on the smoothed map.
+    //    is smooth there; an involution's C is replaced by its involution part
+    //    (`zoomout::involution_part`). Then mismatch, region and confidence are judged on
+    //    the smoothed map.
     if let (true, Some(zb)) = (global && params.zoomout_k > 0, ctx.zoom()) {
         let kf = params.zoomout_k.min(zb.size());
-        super::zoomout::zoomout_with(zb, &ctx.adjacency, &mut image, kf, kf, params.zoomout_step);
+        super::zoomout::smooth_with(zb, &ctx.adjacency, &mut image, kf);
         let image = &image;
         let smoothed = crate::parallel::chunks(n, |range| range.map(|v| if done[v] { pairs.cost(&profiles[v * k..v * k + profile_len[v]], image[v]) } else { mismatch[v] }).collect::<Vec<f64>>());
         mismatch = smoothed.concat();
