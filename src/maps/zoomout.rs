@@ -96,8 +96,7 @@ pub fn zoomout_with(zb: &ZoomBasis, adjacency: &(Vec<usize>, Vec<u32>), map: &mu
 }
 
 /// One ZoomOut step at `k` eigenfunctions (the spectral smoothing of the geodesic polish): an
-/// involution's functional map is projected on the orthogonal involutions
-/// ([`Involution::Project`]).
+/// involution's functional map is replaced by its involution part ([`Involution::Project`]).
 pub fn smooth_with(zb: &ZoomBasis, adjacency: &(Vec<usize>, Vec<u32>), map: &mut [usize], k: usize) {
     zoomout_between(zb, adjacency, zb, adjacency, map, k, k, 1, Involution::Project)
 }
@@ -350,7 +349,7 @@ mod tests {
     }
 
     /// The smoothing step of a scrambled mirror (every vertex sent to a vertex two rings from
-    /// its image) on a posed, noisy quadruped: projected on the involutions, the map comes back
+    /// its image) on a posed, noisy quadruped: with the involution part, the map comes back
     /// to the mirror better than with plain ZoomOut's step, and T∘T is nearer the identity.
     #[test]
     fn smoothing_a_scrambled_mirror_gives_an_involution() {
