@@ -12,7 +12,8 @@
 //! by more than `max_distortion` is dropped; two maps are one symmetry when they agree on ≥ 50%
 //! of the samples (80% after the polish, which can bring two versions together) *and* have the
 //! same orientation type (a reflection and a rotation never are), and the version the judge
-//! scores higher is kept; symmetries are reported by decreasing score. Complexity is the
+//! scores higher is kept; symmetries are reported by decreasing score, and a map of order 1
+//! (it brings 80% of the probes back to themselves: the identity) is not reported. Complexity is the
 //! paper's characterisation (the symmetry line), not a selector. Finally the set is closed
 //! under composition: the composition of two global symmetries that is not the identity,
 //! preserves distances and is new is reported too. A shape with a continuous family of

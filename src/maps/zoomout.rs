@@ -28,10 +28,9 @@
 //! (the nearest orthogonal involution) gave 83.2 / 81.5% over all against 82.8 / 80.9%, but a
 //! sign taken on an eigenvalue near 0 is a coin toss: the maps of a 642-vertex quadruped changed
 //! on 7.5% of the vertices when its coordinates were scaled by 10⁻⁹; also symmetrising
-//! `C ← (C + Cᵀ)/2` in every iteration of the refinements' ZoomOuts ([`Involution::Symmetrise`],
-//! kept for experiments) turned wrong maps into coherent-looking reflections (a generated shape
-//! with no symmetry got a global one; thin legs on the hierarchy lost their mirror, 0.9 → 0.72
-//! acc@0.05); projecting in every iteration lowered TOSCA's first by 0.9 point. Session 10's
+//! `C ← (C + Cᵀ)/2` in every iteration of the refinements' ZoomOuts turned wrong maps into
+//! coherent-looking reflections (a generated shape with no symmetry got a global one; thin
+//! legs on the hierarchy lost their mirror, 0.9 → 0.72 acc@0.05); projecting in every iteration lowered TOSCA's first by 0.9 point. Session 10's
 //! symmetrised smoothing step without the projection and the order-1 filter lowered the first
 //! reported symmetry.
 
@@ -108,8 +107,6 @@ pub fn smooth_with(zb: &ZoomBasis, adjacency: &(Vec<usize>, Vec<u32>), map: &mut
 pub enum Involution {
     /// Nothing (a map between two shapes).
     Off,
-    /// `C ← (C + Cᵀ)/2`: the map and its inverse are fitted together.
-    Symmetrise,
     /// `C ←` its involution part ([`involution_part`]).
     Project,
 }
@@ -171,10 +168,8 @@ pub fn zoomout_between(
         };
         let (ca, cb) = crate::parallel::join(|| part(0, &sub[..half], &mut gather_a), || part(half, &sub[half..], &mut gather_b));
         let mut c = ca + cb;
-        match involution {
-            Involution::Off => {}
-            Involution::Symmetrise => c = symmetrised(&c),
-            Involution::Project => c = involution_part(&c),
+        if involution == Involution::Project {
+            c = involution_part(&c);
         }
         // The subset's vertices move independently: a range of them per core, each with its
         // own targets (a column of the product is the same alone or among others).
@@ -248,11 +243,6 @@ impl crate::spectral::kernels::Kernel for Descents<'_> {
     }
 }
 
-/// `(C + Cᵀ)/2`.
-fn symmetrised(c: &Mat<f64>) -> Mat<f64> {
-    (c + c.transpose()) * 0.5
-}
-
 /// The involution part of `C`: `Q f(Λ) Qᵀ` for the eigendecomposition `Q Λ Qᵀ` of
 /// `(C + Cᵀ)/2`, with `f(λ) = sign(λ)` where `|λ| ≥ ½` and `f(λ) = λ` elsewhere: the
 /// directions the map carries onto ± themselves more than half-way become exact (±1), as in
@@ -262,7 +252,7 @@ fn symmetrised(c: &Mat<f64>) -> Mat<f64> {
 /// when its coordinates were scaled by 10⁻⁹, `tests/detect.rs`,
 /// `units_and_position_do_not_change_the_result`). `C` symmetrised if the eigensolver fails.
 pub(crate) fn involution_part(c: &Mat<f64>) -> Mat<f64> {
-    let sym = symmetrised(c);
+    let sym = (c + c.transpose()) * 0.5;
     let Ok(evd) = sym.self_adjoint_eigen(faer::Side::Lower) else { return sym };
     let q = evd.U();
     let k = sym.nrows();
