@@ -1,6 +1,7 @@
 //! Diagnostic: how good is the orientation-reversing functional map hypothesis alone on a shape
-//! with ground truth (`NAME.off` + `NAME.sym.txt`)? Prints acc@0.05 of its point map, before
-//! and after a full ZoomOut, with the judge's verdict.
+//! with ground truth (`NAME.off` + `NAME.sym.txt`)? Prints acc@0.05 of its point map, read
+//! both ways (`spectral_init::Conversion`), before and after a full ZoomOut, with the judge's
+//! verdict.
 //!
 //! ```text
 //! cargo run --release --example fmap_probe -- ../shared/data/tosca/cat3.off [...]
@@ -33,14 +34,17 @@ fn main() {
         let secs = t.elapsed().as_secs_f64();
         let adj = mesh.adjacency();
         let search: Vec<usize> = (0..mesh.num_vertices()).step_by(5).collect();
-        let mut image = spectral_init::point_map(&basis, &adj, &c, &search);
         let judge = Judge::new(&mesh.vertices, vertex_normals(&mesh), &adj, mesh.area().sqrt(), &JudgeParams::default());
         let as_map = |im: &[usize]| im.iter().map(|&w| w as i64).collect::<Vec<i64>>();
-        let a0 = eval::accuracy(&mesh, &as_map(&image), &truth, &[0.05])[0];
-        let v0 = judge.judge(&as_map(&image), 0.0, 0.04);
-        zoomout::zoomout(&basis, &adj, &mut image, c.nrows(), 100, 5);
-        let a1 = eval::accuracy(&mesh, &as_map(&image), &truth, &[0.05])[0];
-        let v1 = judge.judge(&as_map(&image), 0.0, 0.04);
-        println!("{path}: fmap {secs:.2} s; point map acc {a0:.3} rev {:.2} fixed {:.2}; zoomout acc {a1:.3} rev {:.2} fixed {:.2}", v0.reversal, v0.fixed, v1.reversal, v1.fixed);
+        println!("{path}: fmap {secs:.2} s");
+        for conversion in [spectral_init::Conversion::Adjoint, spectral_init::Conversion::Transported] {
+            let mut image = spectral_init::point_map(&basis, &adj, &c, &search, conversion);
+            let a0 = eval::accuracy(&mesh, &as_map(&image), &truth, &[0.05])[0];
+            let v0 = judge.judge(&as_map(&image), 0.0, 0.04);
+            zoomout::zoomout(&basis, &adj, &mut image, c.nrows(), 100, 5);
+            let a1 = eval::accuracy(&mesh, &as_map(&image), &truth, &[0.05])[0];
+            let v1 = judge.judge(&as_map(&image), 0.0, 0.04);
+            println!("  {conversion:?}: point map acc {a0:.3} rev {:.2} fixed {:.2}; zoomout acc {a1:.3} rev {:.2} fixed {:.2}", v0.reversal, v0.fixed, v1.reversal, v1.fixed);
+        }
     }
 }

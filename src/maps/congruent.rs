@@ -134,7 +134,7 @@ impl<'a> Side<'a> {
 
     /// The point map to `dst` of the functional map `c` (`Φ_dst(T v) ≈ Φ_src(v) C`), refined.
     fn map_to(&self, dst: &Side<'_>, c: &Mat<f64>, maps: &MapParams) -> Vec<usize> {
-        let mut map = super::spectral_init::point_map_between(self.part.basis, &self.adjacency, dst.part.basis, &dst.adjacency, c, &dst.search);
+        let mut map = super::spectral_init::point_map_between(self.part.basis, &self.adjacency, dst.part.basis, &dst.adjacency, c, &dst.search, super::spectral_init::Conversion::Adjoint);
         if maps.zoomout_k > c.nrows() {
             super::zoomout::zoomout_between(&self.zoom, &self.adjacency, &dst.zoom, &dst.adjacency, &mut map, c.nrows(), maps.zoomout_k, maps.zoomout_step, super::zoomout::Involution::Off);
         }

@@ -531,16 +531,32 @@ pub fn profile_map(
     Some(finish(ctx, anchors, image, params, false, Some(&profiles)))
 }
 
-/// The hypothesis of a functional map `c` (`Φ(T v) ≈ Φ(v) C`, on the context's basis): its
-/// point map, judged against its own images of the samples like a refined map, but not yet
-/// refined ([`refine`] refines it as it does a profile map). `None` without a basis.
+/// The hypothesis of a functional map `c` solved from an energy (`Φ(T v) ≈ Φ(v) C`, on the
+/// context's basis): its point map (read with the candidates transported by `C`,
+/// [`spectral_init::Conversion::Transported`]: such a `C` shrinks weakly pinned directions),
+/// judged against its own images of the samples like a refined map, but not yet refined
+/// ([`refine`] refines it as it does a profile map). A point map too coarse for [`refine`]
+/// (its region under `zoomout_fraction`: read in `K = 30` eigenfunctions, a posed shape's
+/// map preserves distances on few vertices) is first refined by ZoomOut from `K` to
+/// `zoomout_k`, as pyFM refines its maps, so that the hypothesis competes at all. Always
+/// refining it that way instead cost the FAUST and KIDS figures their gain (the map drifts
+/// from the mirror when it was refinable already); see docs/accuracy.md, session 14. `None`
+/// without a basis.
 pub fn from_functional_map(ctx: &Context<'_>, c: &Mat<f64>, samples: &[usize], params: &MapParams) -> Option<DenseMap> {
     let basis = ctx.basis?;
     if c.nrows() > basis.k() {
         return None;
     }
-    let image = spectral_init::point_map(basis, &ctx.adjacency, c, &ctx.search);
-    let mut m = own_map(ctx, image, samples, params);
+    let image = spectral_init::point_map(basis, &ctx.adjacency, c, &ctx.search, spectral_init::Conversion::Transported);
+    let mut m = own_map(ctx, image.clone(), samples, params);
+    if let (false, Some(zb)) = (refinable(ctx, &m, params), ctx.zoom()) {
+        let k1 = params.zoomout_k.min(zb.size());
+        if c.nrows() < k1 {
+            let mut image = image;
+            zoomout::zoomout_with(zb, &ctx.adjacency, &mut image, c.nrows(), k1, params.zoomout_step);
+            m = own_map(ctx, image, samples, params);
+        }
+    }
     m.refined = false;
     Some(m)
 }
@@ -582,7 +598,7 @@ fn refine_first(ctx: &Context<'_>, m: &DenseMap, samples: &[usize], params: &Map
     // pose distorts distance profiles). The two starts are independent: a thread each.
     let second_start = || {
         let c0 = spectral_init::robust_fit(basis, &m.anchors, params.spectral_start);
-        let mut image = spectral_init::point_map(basis, &ctx.adjacency, &c0, &ctx.search);
+        let mut image = spectral_init::point_map(basis, &ctx.adjacency, &c0, &ctx.search, spectral_init::Conversion::Adjoint);
         zoomout::zoomout_with(zb, &ctx.adjacency, &mut image, params.spectral_start, mid, params.zoomout_step);
         own(image)
     };
