@@ -95,10 +95,10 @@ impl Edge {
 }
 
 /// Whether `u` (unlocked) can collapse into `v` (see the module docs): the faces on the edge
-/// and their apexes if so. `nu` are the sorted neighbours of `u` ([`neighbours`]), `nv`
-/// scratch space.
+/// and their apexes if so. `nu` and `nv` are the sorted neighbours of `u` and `v`
+/// ([`neighbours`]).
 #[allow(clippy::too_many_arguments)]
-fn collapsible(u: usize, v: usize, p: &[[f64; 3]], around: &[Faces], faces: &[[u32; 3]], boundary: &[bool], nu: &[u32], nv: &mut Vec<u32>) -> Option<Edge> {
+fn collapsible(u: usize, v: usize, p: &[[f64; 3]], around: &[Faces], faces: &[[u32; 3]], boundary: &[bool], nu: &[u32], nv: &[u32]) -> Option<Edge> {
     let mut e = Edge { faces: [0; 2], apexes: [0; 2], count: 0 };
     for &f in &around[u] {
         let t = faces[f as usize];
@@ -115,7 +115,6 @@ fn collapsible(u: usize, v: usize, p: &[[f64; 3]], around: &[Faces], faces: &[[u
         return None;
     }
     // Link condition.
-    neighbours(v, around, faces, nv);
     let common = nu.iter().filter(|w| nv.binary_search(w).is_ok()).count();
     if common != e.count {
         return None;
@@ -132,13 +131,8 @@ fn collapsible(u: usize, v: usize, p: &[[f64; 3]], around: &[Faces], faces: &[[u
     (!folds).then_some(e)
 }
 
-/// Scratch space of one thread's collapse costing.
-#[derive(Default)]
-struct Scratch {
-    nb: Vec<u32>,
-    nv: Vec<u32>,
-    options: Vec<(u64, u32)>,
-}
+/// The sorted neighbours of a vertex, inline (most have 5–8; a coarse vertex up to a dozen).
+type Neighbours = smallvec::SmallVec<[u32; 12]>;
 
 /// The simplified mesh: `kept[i]` is the fine vertex of coarse vertex `i`; `triangles` index
 /// the coarse vertices.
@@ -231,7 +225,7 @@ pub fn simplify_with_progress(mesh: &Mesh, target: usize, progress: &mut dyn FnM
         let e = sub(p[u], p[v]);
         q.eval(p[v]).max(0.0) + beta * dot(e, e) * dot(e, e)
     };
-    let (mut nu, mut nv) = (Vec::new(), Vec::new());
+    let (mut nv, mut scratch) = (Vec::new(), Vec::new());
     let mut touched = vec![false; n];
     let mut marked: Vec<usize> = Vec::new();
     // Rounds of independent collapses: every vertex's cheapest allowed collapse, and the
@@ -243,24 +237,35 @@ pub fn simplify_with_progress(mesh: &Mesh, target: usize, progress: &mut dyn FnM
     // cheapest was refused stayed stuck (KIDS 60k 68.8% against 87.5%).
     // Each vertex's cheapest allowed collapse (as a heap of every edge would pop it), recomputed
     // only where a collapse changed the neighbourhood (`dirty`).
-    let best_of = |u: usize, around: &[Faces], faces: &[[u32; 3]], quadric: &[Quadric], boundary: &[bool], scratch: &mut Scratch| -> (u64, u32) {
-        let Scratch { nb, nv, options } = scratch;
-        neighbours(u, around, faces, nb);
+    let best_of = |u: usize, around: &[Faces], faces: &[[u32; 3]], nbrs: &[Neighbours], quadric: &[Quadric], boundary: &[bool], options: &mut Vec<(u64, u32)>| -> (u64, u32) {
+        let nb = &nbrs[u];
         options.clear();
         options.extend(nb.iter().map(|&v| (cost(u, v as usize, quadric).to_bits(), v)));
         options.sort_unstable();
-        options.iter().copied().find(|&(_, v)| collapsible(u, v as usize, p, around, faces, boundary, nb, nv).is_some()).unwrap_or((u64::MAX, u as u32))
+        options.iter().copied().find(|&(_, v)| collapsible(u, v as usize, p, around, faces, boundary, nb, &nbrs[v as usize]).is_some()).unwrap_or((u64::MAX, u as u32))
     };
     // In blocks, with a progress call after each (a second or two on 10⁶ vertices in all).
     if !progress(0.0) {
         return None;
     }
+    // Every vertex's sorted neighbours, kept current through the collapses (the costing reads
+    // them for every vertex it visits: walking the faces each time took a fifth of the time).
+    let lists = crate::parallel::chunks(n, |range| {
+        let mut out = Vec::new();
+        range
+            .map(|v| {
+                neighbours(v, &around, &faces, &mut out);
+                Neighbours::from_slice(&out)
+            })
+            .collect::<Vec<_>>()
+    });
+    let mut nbrs: Vec<Neighbours> = lists.into_iter().flatten().collect();
     let mut best: Vec<(u64, u32)> = Vec::with_capacity(n);
     for block in (0..n).step_by(BLOCK) {
         let block = block..(block + BLOCK).min(n);
         let found = crate::parallel::chunks(block.len(), |range| {
-            let mut scratch = Scratch::default();
-            range.map(|i| best_of(block.start + i, &around, &faces, &quadric, &boundary, &mut scratch)).collect::<Vec<_>>()
+            let mut options = Vec::new();
+            range.map(|i| best_of(block.start + i, &around, &faces, &nbrs, &quadric, &boundary, &mut options)).collect::<Vec<_>>()
         });
         best.extend(found.into_iter().flatten());
         if !progress(0.0) {
@@ -272,8 +277,8 @@ pub fn simplify_with_progress(mesh: &Mesh, target: usize, progress: &mut dyn FnM
     while alive > target {
         // Independent per vertex: on all cores.
         let fresh = crate::parallel::chunks(dirty.len(), |range| {
-            let mut scratch = Scratch::default();
-            range.filter(|&i| vertex_alive[dirty[i]]).map(|i| (dirty[i], best_of(dirty[i], &around, &faces, &quadric, &boundary, &mut scratch))).collect::<Vec<_>>()
+            let mut options = Vec::new();
+            range.filter(|&i| vertex_alive[dirty[i]]).map(|i| (dirty[i], best_of(dirty[i], &around, &faces, &nbrs, &quadric, &boundary, &mut options))).collect::<Vec<_>>()
         });
         for (u, b) in fresh.into_iter().flatten() {
             best[u] = b;
@@ -304,8 +309,7 @@ pub fn simplify_with_progress(mesh: &Mesh, target: usize, progress: &mut dyn FnM
             if touched[u] || touched[v] {
                 continue;
             }
-            neighbours(u, &around, &faces, &mut nu);
-            let Some(edge) = collapsible(u, v, p, &around, &faces, &boundary, &nu, &mut nv) else { continue };
+            let Some(edge) = collapsible(u, v, p, &around, &faces, &boundary, &nbrs[u], &nbrs[v]) else { continue };
             let (shared, apexes) = (edge.faces(), edge.apexes());
             // Collapse u into v.
             for &f in shared {
@@ -332,8 +336,28 @@ pub fn simplify_with_progress(mesh: &Mesh, target: usize, progress: &mut dyn FnM
             quadric[v].add(&q);
             locked[v] |= locked[u];
             boundary[v] |= boundary[u];
-            // The changed neighbourhood waits for the next round.
+            // The neighbour lists: `v`'s and the apexes' from their faces; every other
+            // neighbour of `u` sees `v` instead of `u`.
             neighbours(v, &around, &faces, &mut nv);
+            let nu = std::mem::take(&mut nbrs[u]);
+            for &w in &nu {
+                let w = w as usize;
+                if w == v {
+                    continue;
+                }
+                if apexes.contains(&(w as u32)) {
+                    neighbours(w, &around, &faces, &mut scratch);
+                    nbrs[w] = Neighbours::from_slice(&scratch);
+                } else {
+                    let list = &mut nbrs[w];
+                    list.retain(|x| *x as usize != u);
+                    if let Err(at) = list.binary_search(&(v as u32)) {
+                        list.insert(at, v as u32);
+                    }
+                }
+            }
+            nbrs[v] = Neighbours::from_slice(&nv);
+            // The changed neighbourhood waits for the next round.
             for &w in nv.iter().chain(std::iter::once(&(v as u32))).chain(std::iter::once(&(u as u32))) {
                 if !std::mem::replace(&mut touched[w as usize], true) {
                     marked.push(w as usize);
@@ -344,6 +368,8 @@ pub fn simplify_with_progress(mesh: &Mesh, target: usize, progress: &mut dyn FnM
             touched[w] = false;
             dirty.push(w);
         }
+        // In memory order: the next round's costing reads each vertex's neighbourhood.
+        dirty.sort_unstable();
         if removed == 0 {
             break;
         }
