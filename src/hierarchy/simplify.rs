@@ -225,7 +225,7 @@ pub fn simplify_with_progress(mesh: &Mesh, target: usize, progress: &mut dyn FnM
         let e = sub(p[u], p[v]);
         q.eval(p[v]).max(0.0) + beta * dot(e, e) * dot(e, e)
     };
-    let (mut nv, mut scratch) = (Vec::new(), Vec::new());
+    let mut nv = Vec::new();
     let mut touched = vec![false; n];
     let mut marked: Vec<usize> = Vec::new();
     // Rounds of independent collapses: every vertex's cheapest allowed collapse, and the
@@ -336,24 +336,56 @@ pub fn simplify_with_progress(mesh: &Mesh, target: usize, progress: &mut dyn FnM
             quadric[v].add(&q);
             locked[v] |= locked[u];
             boundary[v] |= boundary[u];
-            // The neighbour lists: `v`'s and the apexes' from their faces; every other
-            // neighbour of `u` sees `v` instead of `u`.
-            neighbours(v, &around, &faces, &mut nv);
+            // The neighbour lists, without walking faces: `v` has both lists' vertices but
+            // `u` and `v`; every other neighbour of `u` sees `v` instead of `u`. An apex keeps
+            // `v` unless the collapse folded away an ear of the boundary (the apex's edges to
+            // `u` and `v` both boundary edges: no live face of `v` holds it any more).
             let nu = std::mem::take(&mut nbrs[u]);
+            nv.clear();
+            let (mut i, mut j) = (0, 0);
+            let old = &nbrs[v];
+            while i < nu.len() || j < old.len() {
+                let x = match (nu.get(i), old.get(j)) {
+                    (Some(&a), Some(&b)) if a == b => {
+                        i += 1;
+                        j += 1;
+                        a
+                    }
+                    (Some(&a), Some(&b)) if a < b => {
+                        i += 1;
+                        a
+                    }
+                    (Some(&a), None) => {
+                        i += 1;
+                        a
+                    }
+                    (_, Some(&b)) => {
+                        j += 1;
+                        b
+                    }
+                    (None, None) => unreachable!("the loop ends first"),
+                };
+                if x as usize != u && x as usize != v {
+                    nv.push(x);
+                }
+            }
+            for &x in apexes {
+                let x = x as usize;
+                nbrs[x].retain(|w| *w as usize != u);
+                if boundary[x] && !around[v].iter().any(|&f| faces[f as usize].contains(&(x as u32))) {
+                    nbrs[x].retain(|w| *w as usize != v);
+                    nv.retain(|w| *w as usize != x);
+                }
+            }
             for &w in &nu {
                 let w = w as usize;
-                if w == v {
+                if w == v || apexes.contains(&(w as u32)) {
                     continue;
                 }
-                if apexes.contains(&(w as u32)) {
-                    neighbours(w, &around, &faces, &mut scratch);
-                    nbrs[w] = Neighbours::from_slice(&scratch);
-                } else {
-                    let list = &mut nbrs[w];
-                    list.retain(|x| *x as usize != u);
-                    if let Err(at) = list.binary_search(&(v as u32)) {
-                        list.insert(at, v as u32);
-                    }
+                let list = &mut nbrs[w];
+                list.retain(|x| *x as usize != u);
+                if let Err(at) = list.binary_search(&(v as u32)) {
+                    list.insert(at, v as u32);
                 }
             }
             nbrs[v] = Neighbours::from_slice(&nv);
