@@ -548,11 +548,12 @@ pub fn from_functional_map(ctx: &Context<'_>, c: &Mat<f64>, samples: &[usize], p
         return None;
     }
     let image = spectral_init::point_map(basis, &ctx.adjacency, c, &ctx.search, spectral_init::Conversion::Transported);
-    let mut m = own_map(ctx, image.clone(), samples, params);
+    let mut m = own_map(ctx, image, samples, params);
     if let (false, Some(zb)) = (refinable(ctx, &m, params), ctx.zoom()) {
         let k1 = params.zoomout_k.min(zb.size());
         if c.nrows() < k1 {
-            let mut image = image;
+            // The point map read from `c` (the map keeps it as its `image`).
+            let mut image = m.image.clone();
             zoomout::zoomout_with(zb, &ctx.adjacency, &mut image, c.nrows(), k1, params.zoomout_step);
             m = own_map(ctx, image, samples, params);
         }

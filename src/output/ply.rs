@@ -10,7 +10,6 @@
 
 use std::path::Path;
 
-
 use crate::mesh::{IoError, RawMesh};
 
 /// Grey for vertices outside a symmetry's region.
