@@ -260,6 +260,9 @@ pub fn simplify_with_progress(mesh: &Mesh, target: usize, progress: &mut dyn FnM
             .collect::<Vec<_>>()
     });
     let mut nbrs: Vec<Neighbours> = lists.into_iter().flatten().collect();
+    if !progress(0.0) {
+        return None;
+    }
     let mut best: Vec<(u64, u32)> = Vec::with_capacity(n);
     for block in (0..n).step_by(BLOCK) {
         let block = block..(block + BLOCK).min(n);
