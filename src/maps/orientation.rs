@@ -298,6 +298,7 @@ fn solve(src: &Operators, dst: &Operators, reversing: bool, params: &Orientation
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::mesh::vec3::norm;
     use crate::descriptors::{wks, WksParams};
     use crate::shapes;
     use crate::spectral::EigenParams;
@@ -314,10 +315,7 @@ mod tests {
         let search: Vec<usize> = (0..mesh.num_vertices()).collect();
         let image = super::super::spectral_init::point_map(&basis, &mesh.adjacency(), &fmap, &search, super::super::spectral_init::Conversion::Transported);
         let scale = mesh.area().sqrt();
-        let dist = |a: usize, b: usize| {
-            let (p, q) = (mesh.vertices[a], mesh.vertices[b]);
-            ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) + (p[2] - q[2]).powi(2)).sqrt() / scale
-        };
+        let dist = |a: usize, b: usize| norm(sub(mesh.vertices[a], mesh.vertices[b])) / scale;
         let n = mesh.num_vertices();
         let near_mirror = (0..n).filter(|&v| dist(image[v], c.mirror[v] as usize) < 0.1).count();
         let fixed = (0..n).filter(|&v| dist(image[v], v) < 0.03).count();

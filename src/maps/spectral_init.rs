@@ -191,6 +191,7 @@ pub fn point_map_between(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::mesh::vec3::{norm, sub};
     use crate::shapes;
     use crate::spectral::EigenParams;
 
@@ -213,10 +214,7 @@ mod tests {
         let n = mesh.num_vertices();
         let search: Vec<usize> = (0..n).step_by(5).collect();
         let scale = mesh.area().sqrt();
-        let dist = |a: usize, b: usize| {
-            let (p, q) = (mesh.vertices[a], mesh.vertices[b]);
-            ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) + (p[2] - q[2]).powi(2)).sqrt() / scale
-        };
+        let dist = |a: usize, b: usize| norm(sub(mesh.vertices[a], mesh.vertices[b])) / scale;
         let judge = |conversion: Conversion| {
             let image = point_map(&basis, &mesh.adjacency(), &shrunk, &search, conversion);
             let near = (0..n).filter(|&v| dist(image[v], c.mirror[v] as usize) < 0.05).count() as f64 / n as f64;
