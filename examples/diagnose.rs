@@ -37,13 +37,14 @@ fn main() {
     for (i, s) in det.symmetries.iter().enumerate() {
         let a = eval::accuracy(&mesh, &s.map, &pairs, &[0.05, 0.10]);
         println!(
-            "#{i}: {:?} region {} complexity {:.3} distortion {:.4} acc {}/{:.1}",
+            "#{i}: {:?} region {} complexity {:.3} distortion {:.4} acc {:.1}/{:.1} {:?}",
             s.kind,
             s.region_size,
             s.complexity,
             s.distortion,
             100.0 * a[0],
-            100.0 * a[1]
+            100.0 * a[1],
+            s.verdict
         );
         if a[0] > best.0 {
             best = (a[0], i);
