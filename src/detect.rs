@@ -409,7 +409,7 @@ fn detect_part(mesh: Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
         None
     };
     let Some(h) = built else {
-        let (det, spectral) = pipeline(&mesh, params, progress)?;
+        let (det, spectral) = pipeline(&mesh, params, None, progress)?;
         return Ok(PartResult { det, spectral, domain: mesh, hierarchy: None });
     };
     let building = t.elapsed().as_secs_f64();
@@ -417,7 +417,17 @@ fn detect_part(mesh: Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
         return Err(Error::Cancelled { stage: "hierarchy" });
     }
     let (coarse, _) = h.coarse.normalized();
-    let (mut det, spectral) = pipeline(&coarse, params, &mut |f| progress(0.1 + 0.8 * f))?;
+    // The fine mesh's oriented triangles and normals: for its curvature and its judge.
+    let oriented = mesh.oriented_triangles();
+    let normals = mesh.vertex_normals(&oriented);
+    let curvature = (params.maps.curvature_weight > 0.0).then(|| {
+        let raw = crate::descriptors::curvature::raw_mean_curvature(&mesh, &normals);
+        crate::descriptors::curvature::restrict_to_cells(&mesh, &raw, &h.owner, coarse.num_vertices())
+    });
+    if !progress(0.1) {
+        return Err(Error::Cancelled { stage: "hierarchy" });
+    }
+    let (mut det, spectral) = pipeline(&coarse, params, curvature.as_deref(), &mut |f| progress(0.1 + 0.8 * f))?;
     let t = Instant::now();
     let m = coarse.num_vertices();
     // The coarse detection's indices are the coarse mesh's inputs; its vertex c is input
@@ -456,10 +466,7 @@ fn detect_part(mesh: Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
     let fine = |i: usize| mesh.input_index[h.seeds[to_coarse[i]]] as usize;
     // The judge on the fine mesh (the maps are reported there): ranks the lifted maps, as
     // `report` ranks a mesh's own.
-    let judge = {
-        let oriented = mesh.oriented_triangles();
-        Judge::new(&mesh.vertices, mesh.vertex_normals(&oriented), &h.fine_adjacency, mesh.area().sqrt(), &params.judge)
-    };
+    let judge = Judge::new(&mesh.vertices, normals, &h.fine_adjacency, mesh.area().sqrt(), &params.judge);
     let count = det.symmetries.len();
     for (i, (s, dense)) in det.symmetries.iter_mut().zip(lifted).enumerate() {
         if !progress(0.97 + 0.03 * i as f64 / count as f64) {
@@ -646,8 +653,10 @@ fn swap(
     }
 }
 
-/// [`detect`] on the current thread.
-fn pipeline(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool) -> Result<(Detection, Spectral), Error> {
+/// [`detect`] on the current thread, on one connected mesh. `curvature`: the raw mean
+/// curvature of its vertices when known from a finer mesh
+/// ([`crate::descriptors::curvature::restrict_to_cells`]); `None` estimates it on `mesh`.
+fn pipeline(mesh: &Mesh, params: &Params, curvature: Option<&[f64]>, progress: &mut dyn FnMut(f64) -> bool) -> Result<(Detection, Spectral), Error> {
     let t_all = Instant::now();
     let mut timings = Timings::default();
     let cancelled = |stage: &'static str| Error::Cancelled { stage };
@@ -718,6 +727,19 @@ fn pipeline(mesh: &Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool)
     // operators of the functional map hypothesis.
     let oriented = mesh.oriented_triangles();
     let normals = mesh.vertex_normals(&oriented);
+    // The polish's curvature term (`crate::descriptors::curvature`), on the maps' domain.
+    if params.maps.curvature_weight > 0.0 {
+        use crate::descriptors::curvature::{band_limited, raw_mean_curvature};
+        let time = params.maps.curvature_time;
+        let h = match curvature {
+            Some(raw) => band_limited(raw, fine_basis, time),
+            None => band_limited(&raw_mean_curvature(mesh, &normals), fine_basis, time),
+        };
+        ctx.curvature = Some(match &proxy {
+            Some(p) => p.seeds.iter().map(|&s| h[s]).collect(),
+            None => h,
+        });
+    }
     let domain_judge = match &proxy {
         Some(p) => Judge::new(&p.positions, p.seeds.iter().map(|&s| normals[s]).collect(), &p.adjacency, scale, &params.judge),
         None => Judge::new(&mesh.vertices, normals.clone(), &ctx.adjacency, scale, &params.judge),

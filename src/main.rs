@@ -58,6 +58,10 @@ enum Command {
         /// Passes of the geodesic polish of every map (0 disables it).
         #[arg(long, default_value_t = 2)]
         polish: usize,
+        /// Weight of the polish's extrinsic cue, band-limited mean curvature (≥ 0; 0: purely
+        /// intrinsic maps, e.g. for a shape that bends without stretching everywhere).
+        #[arg(long, default_value_t = 0.03, value_parser = non_negative)]
+        curvature_weight: f64,
         /// On meshes of more than 1.5 times this many vertices, make the maps on a proxy of this
         /// many vertices and lift them to every vertex (0: always on the whole mesh).
         #[arg(long, default_value_t = 6000)]
@@ -163,6 +167,7 @@ fn run(cli: Cli) -> Result<(), intrinsym::Error> {
             eps,
             accept,
             polish,
+            curvature_weight,
             proxy_vertices,
             hierarchy_vertices,
             groups,
@@ -192,6 +197,7 @@ fn run(cli: Cli) -> Result<(), intrinsym::Error> {
             params.voting.eps = eps;
             params.maps.accept = accept;
             params.maps.polish = polish;
+            params.maps.curvature_weight = curvature_weight;
             params.maps.proxy_vertices = proxy_vertices;
             params.hierarchy_vertices = hierarchy_vertices;
             params.groups = groups;
@@ -404,4 +410,13 @@ fn run(cli: Cli) -> Result<(), intrinsym::Error> {
         }
     }
     Ok(())
+}
+
+/// A finite number ≥ 0 (clap names the option in its error).
+fn non_negative(text: &str) -> Result<f64, String> {
+    match text.parse::<f64>() {
+        Ok(x) if x.is_finite() && x >= 0.0 => Ok(x),
+        Ok(x) => Err(format!("{x} is out of range: a finite number ≥ 0")),
+        Err(e) => Err(format!("{text:?} is not a number: {e}")),
+    }
 }

@@ -63,6 +63,8 @@ fn set_param(p: &mut Params, kv: &str) -> Result<(), String> {
         "spectral_start" => p.maps.spectral_start = u()?,
         "polish" => p.maps.polish = u()?,
         "polish_samples" => p.maps.polish_samples = u()?,
+        "curvature_weight" => p.maps.curvature_weight = f()?,
+        "curvature_time" => p.maps.curvature_time = f()?,
         "local_anchors" => p.maps.local_anchors = u()?,
         "search_vertices" => p.maps.search_vertices = u()?,
         "global_fraction" => p.maps.global_fraction = f()?,

@@ -1,5 +1,7 @@
-//! Point descriptors. The paper's good-voter test compares wave kernel signatures ([`wks`]).
+//! Point descriptors. The paper's good-voter test compares wave kernel signatures ([`wks`]);
+//! the geodesic polish also compares band-limited mean curvature ([`curvature`]).
 
+pub mod curvature;
 pub mod wks;
 
 pub use wks::{wks, WksParams};

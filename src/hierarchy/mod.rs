@@ -20,7 +20,9 @@
 //!    ranks them as a mesh's own maps are ranked.
 //!
 //! What is computed at full resolution: only the cells, the lift (O(n log n) and O(n)), the
-//! judge's stencils and the outputs themselves (maps and confidences). No eigenpair, descriptor or dense `n × k`
+//! judge's stencils, the mean curvature of the polish's curvature term (one pass over the
+//! triangles, averaged over each cell: [`crate::descriptors::curvature`]) and the outputs
+//! themselves (maps and confidences). No eigenpair, descriptor or dense `n × k`
 //! matrix of the fine mesh is ever formed, so memory grows linearly with the vertices. The
 //! functional map and complexity reported for a symmetry are those of the coarse mesh's
 //! basis. A map's precision is that of the coarse map plus the lift's interpolation (the cell

@@ -21,7 +21,12 @@
 //!    other than itself (an anchor is not evidence for its own image, so one that is off moves
 //!    with its neighbours and the next pass starts from the moved image), by greedy descent on
 //!    the mesh graph from its current image, its nearest anchor's image and its neighbours'
-//!    images.
+//!    images. To this cost (and to the re-matching of step 1) is added the curvature term
+//!    `μ |h_s(v) − h_s(w)|` (band-limited mean curvature over its median magnitude,
+//!    [`crate::descriptors::curvature`]; `μ = curvature_weight`): where geodesics leave images
+//!    nearly tied (a map slid along a limb preserves them about as well as the true map), the
+//!    image whose extrinsic curvature matches wins. The mismatch `c_v` judged below is the
+//!    profile term alone.
 //! 3. **Region**, judged on geodesics: `{v : c_v(T v) ≤ accept·D and δ_WKS(v, T v) ≤
 //!    wks_accept}`; a partial map whose region now covers `global_fraction` of the shape
 //!    becomes global (defined everywhere), a global map stays global.
@@ -444,10 +449,11 @@ pub fn try_polish(ctx: &Context<'_>, geodesics: &Geodesics, m: &DenseMap, sample
     let rematched = crate::parallel::map(&untrusted, |&i| {
         let mut profile = Vec::new();
         super::nearest_profile(|j| first.from_source(src[i], j), trusted.iter().copied(), k, &mut profile);
-        super::multi_start(ctx, |w| first.cost(&profile, w))
+        let a = src[i];
+        super::multi_start(ctx, |w| first.cost(&profile, w) + ctx.curvature_cost(a, w, params.curvature_weight))
     });
     for (&i, (w, cw)) in untrusted.iter().zip(rematched) {
-        if cw <= tol {
+        if cw - ctx.curvature_cost(src[i], w, params.curvature_weight) <= tol {
             dst[i] = w;
             anchors.push(i);
         }
@@ -503,7 +509,7 @@ pub fn try_polish(ctx: &Context<'_>, geodesics: &Geodesics, m: &DenseMap, sample
     }
     while let Some(v) = queue.pop_front() {
         let profile = &profiles[v * k..v * k + profile_len[v]];
-        let c = |w: usize| pairs.cost(profile, w);
+        let c = |w: usize| pairs.cost(profile, w) + ctx.curvature_cost(v, w, params.curvature_weight);
         let near = profile.iter().fold(profile[0], |b, &p| if p.1 < b.1 { p } else { b }).0;
         // The best start; a candidate equal to the current one has its cost (neighbours often
         // share an image), and the descent starts from the known cost.
@@ -525,7 +531,8 @@ pub fn try_polish(ctx: &Context<'_>, geodesics: &Geodesics, m: &DenseMap, sample
         }
         let (w, cw) = super::descend_from(ctx, start, c);
         image[v] = w;
-        mismatch[v] = cw;
+        // The mismatch judges distances alone (region, confidence): without the curvature term.
+        mismatch[v] = cw - ctx.curvature_cost(v, w, params.curvature_weight);
         done[v] = true;
         for &u in ctx.neighbours(v) {
             if !seen[u as usize] {

@@ -85,6 +85,13 @@ pub struct MapParams {
     /// voting's; a superset of them). On posed TOSCA 64 → 128 gave 85.0 → 86.4% mean acc@0.05;
     /// 192 gave 86.5%.
     pub polish_samples: usize,
+    /// Weight `μ` of the curvature term `μ |h_s(v) − h_s(w)|` in the polish's matching cost
+    /// (`h_s` the band-limited mean curvature over its median magnitude,
+    /// [`crate::descriptors::curvature`]; the profile term is in units of √area). Default
+    /// 0.03; 0 disables it.
+    pub curvature_weight: f64,
+    /// Heat time `τ` of the curvature's low-pass filter on the unit-area mesh (default 1e-3).
+    pub curvature_time: f64,
     /// On a mesh of more than 1.5 times this many vertices, the maps are made
     /// on a proxy of this many vertices and lifted to every vertex ([`proxy`]; default 6000,
     /// 0 disables it).
@@ -95,7 +102,7 @@ pub struct MapParams {
 
 impl Default for MapParams {
     fn default() -> Self {
-        MapParams { accept: 0.03, refine: 3, fmap_size: 20, search_vertices: 1000, local_anchors: 16, wks_accept: 0.2, zoomout_fraction: 0.6, zoomout_k: 100, spectral_start: 12, zoomout_step: 5, global_fraction: 0.75, polish: 2, polish_samples: 128, proxy_vertices: 6000, orientation: Default::default() }
+        MapParams { accept: 0.03, refine: 3, fmap_size: 20, search_vertices: 1000, local_anchors: 16, wks_accept: 0.2, zoomout_fraction: 0.6, zoomout_k: 100, spectral_start: 12, zoomout_step: 5, global_fraction: 0.75, polish: 2, polish_samples: 128, curvature_weight: 0.03, curvature_time: 1e-3, proxy_vertices: 6000, orientation: Default::default() }
     }
 }
 
@@ -159,6 +166,9 @@ pub struct Context<'a> {
     /// The judge on this graph ([`crate::judge`]) with the probe vertices distortion is
     /// measured on and the largest distortion accepted; `None` ranks global maps by complexity.
     pub judge: Option<(crate::judge::Judge, Vec<usize>, f64)>,
+    /// The band-limited mean curvature of each vertex ([`crate::descriptors::curvature`]) for
+    /// the polish's curvature term; `None` disables the term.
+    pub curvature: Option<Vec<f64>>,
     /// ZoomOut's data on `basis` up to `zoom_size` eigenfunctions, built on first use.
     zoom: std::sync::OnceLock<zoomout::ZoomBasis>,
     /// Every vertex's profile among the samples (the anchors of every refined map's own
@@ -185,7 +195,15 @@ impl<'a> Context<'a> {
     ) -> Self {
         let energies = wks.ncols();
         let rows = row_major(wks.as_ref(), energies);
-        Context { positions, emb, adjacency, diameter, search: search_subset(positions.len(), params), wks: rows, energies, basis: None, judge: None, zoom: Default::default(), samples: Default::default(), zoom_size: params.zoomout_k }
+        Context { positions, emb, adjacency, diameter, search: search_subset(positions.len(), params), wks: rows, energies, basis: None, judge: None, curvature: None, zoom: Default::default(), samples: Default::default(), zoom_size: params.zoomout_k }
+    }
+
+    /// `μ |h_s(v) − h_s(w)|`, the polish's curvature term for `v ↦ w` (0 without curvature).
+    pub(crate) fn curvature_cost(&self, v: usize, w: usize, weight: f64) -> f64 {
+        match &self.curvature {
+            Some(h) if weight > 0.0 => weight * (h[v] - h[w]).abs(),
+            _ => 0.0,
+        }
     }
 
     /// Number of vertices.
