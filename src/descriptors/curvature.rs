@@ -116,7 +116,8 @@ const RELIABLE_RATIO: f64 = 0.3;
 
 /// The band-limited, median-normalised mean curvature `h_s` (see the module docs) from the
 /// raw curvature `raw` of the vertices of `basis`'s mesh, at heat time `tau` (unit area),
-/// scaled down on a noisy mesh ([`RELIABLE_RATIO`]). All zeros on a flat mesh.
+/// scaled down on a noisy mesh ([`RELIABLE_RATIO`]). All zeros on a flat mesh or when any
+/// value is not finite; a negative `tau` counts as 0.
 pub fn band_limited(raw: &[f64], basis: &Eigenbasis, tau: f64) -> Vec<f64> {
     let n = raw.len();
     let k = basis.k();
@@ -125,7 +126,7 @@ pub fn band_limited(raw: &[f64], basis: &Eigenbasis, tau: f64) -> Vec<f64> {
     let coefficients: Vec<f64> = (0..k)
         .map(|i| {
             let c: f64 = (0..n).map(|v| phi[(v, i)] * mh[v]).sum();
-            c / (1.0 + tau * basis.evals[i].max(0.0))
+            c / (1.0 + tau.max(0.0) * basis.evals[i].max(0.0))
         })
         .collect();
     let mut h: Vec<f64> = (0..n).map(|v| (0..k).map(|i| phi[(v, i)] * coefficients[i]).sum()).collect();
@@ -140,7 +141,10 @@ pub fn band_limited(raw: &[f64], basis: &Eigenbasis, tau: f64) -> Vec<f64> {
         for x in &mut h {
             *x *= reliability / median;
         }
-    } else {
+    }
+    // No cue rather than a wrong one: a flat mesh, or a value a near-degenerate triangle's
+    // cotangent blew up (the polish's descent compares costs, which NaN would break).
+    if !(median > 0.0 && median.is_finite()) || !h.iter().all(|x| x.is_finite()) {
         h.fill(0.0);
     }
     h
