@@ -421,8 +421,8 @@ fn detect_part(mesh: Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
     let oriented = mesh.oriented_triangles();
     let normals = mesh.vertex_normals(&oriented);
     let curvature = (params.maps.curvature_weight > 0.0).then(|| {
-        let raw = crate::descriptors::curvature::raw_mean_curvature(&mesh, &normals);
-        crate::descriptors::curvature::restrict_to_cells(&mesh, &raw, &h.owner, coarse.num_vertices())
+        let (raw, mass) = crate::descriptors::curvature::raw_mean_curvature(&mesh, &normals);
+        crate::descriptors::curvature::restrict_to_cells(&raw, &mass, &h.owner, coarse.num_vertices())
     });
     if !progress(0.1) {
         return Err(Error::Cancelled { stage: "hierarchy" });
@@ -733,7 +733,7 @@ fn pipeline(mesh: &Mesh, params: &Params, curvature: Option<&[f64]>, progress: &
         let time = params.maps.curvature_time;
         let h = match curvature {
             Some(raw) => band_limited(raw, fine_basis, time),
-            None => band_limited(&raw_mean_curvature(mesh, &normals), fine_basis, time),
+            None => band_limited(&raw_mean_curvature(mesh, &normals).0, fine_basis, time),
         };
         ctx.curvature = Some(match &proxy {
             Some(p) => p.seeds.iter().map(|&s| h[s]).collect(),

@@ -52,11 +52,12 @@ use crate::mesh::vec3::{cross, dot, norm, sub};
 use crate::mesh::Mesh;
 use crate::spectral::Eigenbasis;
 
-/// `(n,)` the raw mean curvature `h = ((L X) · n) / M` of `mesh` at each vertex (cotangent
-/// weights of the positions, lumped mass, vertex `normals` of one consistent orientation),
-/// triangle by triangle (no matrix: it also runs on the 10⁶-vertex meshes of the hierarchy).
-/// Degenerate triangles add nothing; a vertex without area gets 0.
-pub fn raw_mean_curvature(mesh: &Mesh, normals: &[[f64; 3]]) -> Vec<f64> {
+/// `(h, M)`: the raw mean curvature `h = ((L X) · n) / M` of `mesh` at each vertex (cotangent
+/// weights of the positions, vertex `normals` of one consistent orientation) and the lumped
+/// mass `M` (a third of the incident triangles' area), triangle by triangle (no matrix: it
+/// also runs on the 10⁶-vertex meshes of the hierarchy). Degenerate triangles add nothing; a
+/// vertex without area gets 0.
+pub fn raw_mean_curvature(mesh: &Mesh, normals: &[[f64; 3]]) -> (Vec<f64>, Vec<f64>) {
     let n = mesh.num_vertices();
     let p = &mesh.vertices;
     let mut lx = vec![[0.0f64; 3]; n];
@@ -78,22 +79,15 @@ pub fn raw_mean_curvature(mesh: &Mesh, normals: &[[f64; 3]]) -> Vec<f64> {
             }
         }
     }
-    (0..n).map(|v| if mass[v] > 0.0 { dot(lx[v], normals[v]) / mass[v] } else { 0.0 }).collect()
+    let h = (0..n).map(|v| if mass[v] > 0.0 { dot(lx[v], normals[v]) / mass[v] } else { 0.0 }).collect();
+    (h, mass)
 }
 
 /// The mass-weighted mean of a fine per-vertex field over each cell of a hierarchy
-/// (`owner[v]` the coarse vertex whose cell holds fine vertex `v`, `m` coarse vertices): the
-/// coarse mesh's long, irregular triangles estimate curvature poorly, the fine mesh's well.
-pub fn restrict_to_cells(fine: &Mesh, values: &[f64], owner: &[u32], m: usize) -> Vec<f64> {
-    let p = &fine.vertices;
-    let mut mass = vec![0.0f64; fine.num_vertices()];
-    for t in &fine.triangles {
-        let [a, b, c] = t.map(|v| v as usize);
-        let third = norm(cross(sub(p[b], p[a]), sub(p[c], p[a]))) / 6.0;
-        for v in [a, b, c] {
-            mass[v] += third;
-        }
-    }
+/// (`mass` the fine lumped mass, `owner[v]` the coarse vertex whose cell holds fine vertex
+/// `v`, `m` coarse vertices): the coarse mesh's long, irregular triangles estimate curvature
+/// poorly, the fine mesh's well.
+pub fn restrict_to_cells(values: &[f64], mass: &[f64], owner: &[u32], m: usize) -> Vec<f64> {
     let (mut sum, mut weight) = (vec![0.0f64; m], vec![0.0f64; m]);
     for (v, &c) in owner.iter().enumerate() {
         if (c as usize) < m && values[v].is_finite() {
@@ -163,13 +157,13 @@ mod tests {
         let (sphere, _) = sphere.normalized();
         let basis = Eigenbasis::compute(&sphere, &EigenParams { k: 20, ..Default::default() }).unwrap();
         let normals = sphere.vertex_normals(&sphere.oriented_triangles());
-        let h = band_limited(&raw_mean_curvature(&sphere, &normals), &basis, 1e-3);
+        let h = band_limited(&raw_mean_curvature(&sphere, &normals).0, &basis, 1e-3);
         assert!(h.iter().all(|x| (x.abs() - 1.0).abs() < 0.05), "{:?}", h.iter().fold((f64::MAX, f64::MIN), |a, &x| (a.0.min(x), a.1.max(x))));
 
         let (ellipsoid, _) = crate::shapes::ellipsoid(3, [2.0, 1.0, 1.0]).normalized();
         let basis = Eigenbasis::compute(&ellipsoid, &EigenParams { k: 30, ..Default::default() }).unwrap();
         let normals = ellipsoid.vertex_normals(&ellipsoid.oriented_triangles());
-        let h = band_limited(&raw_mean_curvature(&ellipsoid, &normals), &basis, 1e-3);
+        let h = band_limited(&raw_mean_curvature(&ellipsoid, &normals).0, &basis, 1e-3);
         let tip = (0..ellipsoid.num_vertices()).max_by(|&a, &b| ellipsoid.vertices[a][0].total_cmp(&ellipsoid.vertices[b][0])).unwrap();
         let waist = (0..ellipsoid.num_vertices()).min_by(|&a, &b| ellipsoid.vertices[a][0].abs().total_cmp(&ellipsoid.vertices[b][0].abs())).unwrap();
         assert!(h[tip].abs() > 1.5 * h[waist].abs(), "tip {} waist {}", h[tip], h[waist]);
@@ -184,10 +178,10 @@ mod tests {
         let h = crate::hierarchy::Hierarchy::new(&fine, 1500).unwrap();
         let (coarse, _) = h.coarse.normalized();
         let normals = fine.vertex_normals(&fine.oriented_triangles());
-        let raw = restrict_to_cells(&fine, &raw_mean_curvature(&fine, &normals), &h.owner, coarse.num_vertices());
+        let (at_seed, mass) = raw_mean_curvature(&fine, &normals);
+        let raw = restrict_to_cells(&at_seed, &mass, &h.owner, coarse.num_vertices());
         // The curvature varies slowly at the scale of a cell: a cell's mean stays within 10% of
         // its seed's own value.
-        let at_seed = raw_mean_curvature(&fine, &normals);
         let close = h.seeds.iter().zip(&raw).filter(|(&s, &c)| (c - at_seed[s]).abs() <= 0.1 * at_seed[s].abs()).count();
         assert!(close as f64 >= 0.95 * raw.len() as f64, "{close} of {}", raw.len());
         let basis = Eigenbasis::compute(&coarse, &EigenParams { k: 30, ..Default::default() }).unwrap();
@@ -214,7 +208,7 @@ mod tests {
             let (sphere, _) = sphere.normalized();
             let basis = Eigenbasis::compute(&sphere, &EigenParams { k: 30, ..Default::default() }).unwrap();
             let normals = sphere.vertex_normals(&sphere.oriented_triangles());
-            let raw = raw_mean_curvature(&sphere, &normals);
+            let (raw, _) = raw_mean_curvature(&sphere, &normals);
             let mut h: Vec<f64> = band_limited(&raw, &basis, 1e-3).iter().map(|x| x.abs()).collect();
             let mid = h.len() / 2;
             *h.select_nth_unstable_by(mid, f64::total_cmp).1
