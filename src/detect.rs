@@ -378,6 +378,8 @@ struct Spectral {
     basis: Eigenbasis,
     desc: Mat<f64>,
     emb: crate::distance::BiharmonicEmbedding,
+    /// Band-limited mean curvature of the mesh's vertices, when the polish uses it.
+    curvature: Option<Vec<f64>>,
 }
 
 /// One component's detection: the result in input indices, and what the congruence stage
@@ -466,7 +468,9 @@ fn detect_part(mesh: Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
     let fine = |i: usize| mesh.input_index[h.seeds[to_coarse[i]]] as usize;
     // The judge on the fine mesh (the maps are reported there): ranks the lifted maps, as
     // `report` ranks a mesh's own.
-    let judge = Judge::new(&mesh.vertices, normals, &h.fine_adjacency, mesh.area().sqrt(), &params.judge);
+    // Each fine vertex takes its cell's band-limited curvature.
+    let fine_curvature = spectral.curvature.as_ref().map(|hc| h.owner.iter().map(|&c| hc[c as usize]).collect());
+    let judge = Judge::new(&mesh.vertices, normals, &h.fine_adjacency, mesh.area().sqrt(), &params.judge).with_curvature(fine_curvature);
     let count = det.symmetries.len();
     for (i, (s, dense)) in det.symmetries.iter_mut().zip(lifted).enumerate() {
         if !progress(0.97 + 0.03 * i as f64 / count as f64) {
@@ -550,7 +554,7 @@ fn several(whole: &Mesh, parts: &[Mesh], params: &Params, progress: &mut dyn FnM
     // The swaps are judged on the whole mesh (its judge built only for them).
     if !swaps.is_empty() {
         let oriented = whole.oriented_triangles();
-        let judge = Judge::new(&whole.vertices, whole.vertex_normals(&oriented), &whole.adjacency(), total_area.sqrt(), &params.judge);
+        let judge = Judge::new(&whole.vertices, whole.vertex_normals(&oriented), &whole.adjacency(), total_area.sqrt(), &params.judge).with_curvature(whole_curvature(whole, &parts, &results));
         for (a, b, m) in &swaps {
             let s = swap(whole, (&parts[*a], &parts[*b]), (&results[*a], &results[*b]), [*a, *b], m, &judge, params, shares[*a] + shares[*b]);
             ranked.push((s.verdict.score, s));
@@ -578,6 +582,21 @@ fn several(whole: &Mesh, parts: &[Mesh], params: &Params, progress: &mut dyn FnM
         continuous: results[0].det.continuous.clone(),
         components: results.iter().zip(&shares).map(|(r, &area)| Component { vertices: r.det.components[0].vertices, area, continuous: r.det.continuous.clone() }).collect(),
     })
+}
+
+/// The band-limited mean curvature of the whole mesh's vertices, each from its component's
+/// detection (a coarse mesh's value for every vertex of its cell), so that the swaps are
+/// judged like each component's own maps; `None` when a component has none.
+fn whole_curvature(whole: &Mesh, parts: &[Mesh], results: &[PartResult]) -> Option<Vec<f64>> {
+    let mut by_input = vec![0.0; whole.info.input_vertices];
+    for (part, r) in parts.iter().zip(results) {
+        let h = r.spectral.curvature.as_ref()?;
+        for (v, &i) in part.input_index.iter().enumerate() {
+            let d = r.hierarchy.as_ref().map_or(v, |hier| hier.owner[v] as usize);
+            by_input[i as usize] = h[d];
+        }
+    }
+    Some(whole.input_index.iter().map(|&i| by_input[i as usize]).collect())
 }
 
 /// The symmetry of the whole mesh that swaps congruent components `a` and `b` by `m` (made on
@@ -728,18 +747,18 @@ fn pipeline(mesh: &Mesh, params: &Params, curvature: Option<&[f64]>, progress: &
     let oriented = mesh.oriented_triangles();
     let normals = mesh.vertex_normals(&oriented);
     // The polish's curvature term (`crate::descriptors::curvature`), on the maps' domain.
-    if params.maps.curvature_weight > 0.0 {
+    let mesh_curvature = (params.maps.curvature_weight > 0.0).then(|| {
         use crate::descriptors::curvature::{band_limited, raw_mean_curvature};
         let time = params.maps.curvature_time;
-        let h = match curvature {
+        match curvature {
             Some(raw) => band_limited(raw, fine_basis, time),
             None => band_limited(&raw_mean_curvature(mesh, &normals).0, fine_basis, time),
-        };
-        ctx.curvature = Some(match &proxy {
-            Some(p) => p.seeds.iter().map(|&s| h[s]).collect(),
-            None => h,
-        });
-    }
+        }
+    });
+    ctx.curvature = match (&proxy, &mesh_curvature) {
+        (Some(p), Some(h)) => Some(p.seeds.iter().map(|&s| h[s]).collect()),
+        (_, h) => h.clone(),
+    };
     let domain_judge = match &proxy {
         Some(p) => Judge::new(&p.positions, p.seeds.iter().map(|&s| normals[s]).collect(), &p.adjacency, scale, &params.judge),
         None => Judge::new(&mesh.vertices, normals.clone(), &ctx.adjacency, scale, &params.judge),
@@ -1086,7 +1105,10 @@ fn pipeline(mesh: &Mesh, params: &Params, curvature: Option<&[f64]>, progress: &
     // with one, a judge on the mesh's own graph and normals.
     let (on_mesh, own_adjacency);
     let mesh_judge = match (&proxy, &ctx.judge) {
-        (None, Some((domain, _, _))) => domain,
+        (None, Some((domain, _, _))) => {
+            on_mesh = domain.clone().with_curvature(mesh_curvature.clone());
+            &on_mesh
+        }
         _ => {
             let adjacency = match &proxy {
                 Some(p) => &p.mesh_adjacency,
@@ -1095,7 +1117,7 @@ fn pipeline(mesh: &Mesh, params: &Params, curvature: Option<&[f64]>, progress: &
                     &own_adjacency
                 }
             };
-            on_mesh = Judge::new(&mesh.vertices, normals, adjacency, scale, &params.judge);
+            on_mesh = Judge::new(&mesh.vertices, normals, adjacency, scale, &params.judge).with_curvature(mesh_curvature.clone());
             &on_mesh
         }
     };
@@ -1115,7 +1137,7 @@ fn pipeline(mesh: &Mesh, params: &Params, curvature: Option<&[f64]>, progress: &
         components: vec![Component { vertices: n, area: 1.0, continuous: continuous.clone() }],
         continuous,
     };
-    Ok((detection, Spectral { basis: basis_owned, desc, emb: emb_owned }))
+    Ok((detection, Spectral { basis: basis_owned, desc, emb: emb_owned, curvature: mesh_curvature }))
 }
 
 /// The report phase: the verdicts of `mesh_judge`, the judge on the mesh (every map is now

@@ -114,8 +114,8 @@ fn score_all(mesh: &Mesh, truths: &[(String, Vec<(usize, Vec<usize>)>)], params:
                         let a = eval::accuracy(mesh, &processed(&s.map), truth, &[0.05, 0.10]);
                         let v = &s.verdict;
                         symmetries.push(format!(
-                            "{name}\t{i}\t{:.4}\t{:.4}\t{}\t{}\t{:.4}\t{:.4}\t{:.4}\t{:.5}\t{:.4}\t{:.4}",
-                            a[0], a[1], s.kind.as_str(), s.order, v.reversal, v.fixed, v.coverage, s.distortion, s.complexity, v.score
+                            "{name}\t{i}\t{:.4}\t{:.4}\t{}\t{}\t{:.4}\t{:.4}\t{:.4}\t{:.5}\t{:.4}\t{:.4}\t{:.4}",
+                            a[0], a[1], s.kind.as_str(), s.order, v.reversal, v.fixed, v.coverage, s.distortion, s.complexity, v.score, v.curvature
                         ));
                         if i == 0 {
                             first = (a[0], a[1]);
@@ -398,7 +398,7 @@ fn main() {
         print_summary(&rows);
     }
     if let Some(path) = symmetries_tsv {
-        let mut out = String::from("shape\tindex\tacc05\tacc10\tkind\torder\treversal\tfixed\tcoverage\tdistortion\tcomplexity\tscore\n");
+        let mut out = String::from("shape\tindex\tacc05\tacc10\tkind\torder\treversal\tfixed\tcoverage\tdistortion\tcomplexity\tscore\tcurvature\n");
         for line in rows.iter().flat_map(|r| &r.symmetries) {
             out += line;
             out.push('\n');
