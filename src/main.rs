@@ -58,8 +58,10 @@ enum Command {
         /// Passes of the geodesic polish of every map (0 disables it).
         #[arg(long, default_value_t = 2)]
         polish: usize,
-        /// Weight of the polish's extrinsic cue, band-limited mean curvature (≥ 0; 0: purely
-        /// intrinsic maps, e.g. for a shape that bends without stretching everywhere).
+        /// Weight of the polish's extrinsic cue, band-limited mean curvature, which also ranks
+        /// the output and drops maps that change it far more than a true symmetry does (≥ 0;
+        /// 0: purely intrinsic maps and ranking, e.g. for a shape that bends without stretching
+        /// everywhere).
         #[arg(long, default_value_t = 0.03, value_parser = non_negative)]
         curvature_weight: f64,
         /// On meshes of more than 1.5 times this many vertices, make the maps on a proxy of this

@@ -73,6 +73,7 @@ fn set_param(p: &mut Params, kv: &str) -> Result<(), String> {
         "fixed_radius" => p.judge.fixed_radius = f()?,
         "stencil" => p.judge.stencil = f()?,
         "max_fixed" => p.max_fixed = f()?,
+        "max_curvature_change" => p.max_curvature_change = f()?,
         "fmap_k" => p.maps.orientation.k = u()?,
         "fmap_descriptors" => p.maps.orientation.descriptors = u()?,
         _ => return Err(format!("unknown parameter {key}")),
