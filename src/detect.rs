@@ -10,14 +10,14 @@
 //! One judge decides: a map that is locally the identity on more than `max_fixed` of the
 //! surface is dropped (the identity always fits the descriptors); a map whose distances change
 //! by more than `max_distortion` is dropped; a reported map that changes the band-limited mean
-//! curvature by more than `max_curvature_change` is dropped; two maps are one symmetry when they agree on ≥ 50%
-//! of the samples (80% after the polish, which can bring two versions together) *and* have the
-//! same orientation type (a reflection and a rotation never are), and the version the judge
-//! scores higher is kept; symmetries are reported by decreasing score, and a map of order 1
-//! (it brings 80% of the probes back to themselves: the identity) is not reported. Complexity is the
-//! paper's characterisation (the symmetry line), not a selector. Finally the set is closed
-//! under composition: the composition of two global symmetries that is not the identity,
-//! preserves distances and is new is reported too. A shape with a continuous family of
+//! curvature by more than `max_curvature_change` is dropped; two maps are one symmetry when
+//! they agree on ≥ 50% of the samples (80% after the polish, which can bring two versions
+//! together) *and* have the same orientation type (a reflection and a rotation never are),
+//! and the version the judge scores higher is kept; symmetries are reported by decreasing
+//! score, and a map of order 1 (it brings 80% of the probes back to themselves: the identity)
+//! is not reported. Complexity is the paper's characterisation (the symmetry line), not a
+//! selector. Finally the set is closed under composition: the composition of two global
+//! symmetries that is not the identity, preserves distances and is new is reported too. A shape with a continuous family of
 //! isometries (a sphere, a surface of revolution; [`crate::characterize::continuous`]) says so
 //! in [`Detection::continuous`] and reports one map per orientation type, not the cap's worth
 //! of samples of the family.
@@ -1164,9 +1164,9 @@ fn report(mesh: &Mesh, mesh_judge: &Judge, mut found: Vec<Found>, emb: &crate::d
     }
     // A map that changes the curvature far more than any true symmetry does is not one. Not
     // applied to the parts stage's maps (`crate::parts`): the generated directed quadruped's
-    // leg maps, found at acc@0.1 ≥ 0.8, change it by 0.52–1.17 (its thin legs curve far more than the
-    // body's median, so a small misplacement there counts for much), and the evidence for the
-    // limit comes from the global stage's maps.
+    // leg maps, found at acc@0.1 ≥ 0.8, change it by 0.52–1.17 (its thin legs curve far more
+    // than the body's median, so a small misplacement there counts for much), and the
+    // evidence for the limit comes from the global stage's maps.
     found.retain(|f| f.part || f.verdict.curvature <= params.max_curvature_change);
     // Maps between repeated parts after the others (they cover a part of the surface; the first
     // symmetry is what a viewer colours by default).
