@@ -17,10 +17,10 @@
 //! score, and a map of order 1 (it brings 80% of the probes back to themselves: the identity)
 //! is not reported. Complexity is the paper's characterisation (the symmetry line), not a
 //! selector. Finally the set is closed under composition: the composition of two global
-//! symmetries that is not the identity, preserves distances and is new is reported too. A shape with a continuous family of
-//! isometries (a sphere, a surface of revolution; [`crate::characterize::continuous`]) says so
-//! in [`Detection::continuous`] and reports one map per orientation type, not the cap's worth
-//! of samples of the family.
+//! symmetries that is not the identity, preserves distances and is new is reported too. A
+//! shape with a continuous family of isometries (a sphere, a surface of revolution;
+//! [`crate::characterize::continuous`]) says so in [`Detection::continuous`] and reports one
+//! map per orientation type, not the cap's worth of samples of the family.
 //!
 //! A mesh of several connected components ([`crate::mesh::ComponentPolicy::Each`]) is
 //! detected component by component, each on its own unit-area copy (an eigenbasis of a
