@@ -479,8 +479,7 @@ fn detect_part(mesh: Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
     let fine = |i: usize| mesh.input_index[h.seeds[to_coarse[i]]] as usize;
     // The judge on the fine mesh (the maps are reported there): ranks the lifted maps, as
     // `report` ranks a mesh's own.
-    // Each fine vertex takes its cell's band-limited curvature.
-    let fine_curvature = spectral.curvature.as_ref().map(|hc| h.owner.iter().map(|&c| hc[c as usize]).collect());
+    let fine_curvature = spectral.curvature.as_deref().map(|coarse| h.on_fine(coarse));
     let judge = Judge::new(&mesh.vertices, normals, &h.fine_adjacency, mesh.area().sqrt(), &params.judge).with_curvature(fine_curvature);
     let count = det.symmetries.len();
     for (i, (s, dense)) in det.symmetries.iter_mut().zip(lifted).enumerate() {
@@ -565,7 +564,7 @@ fn several(whole: &Mesh, parts: &[Mesh], params: &Params, progress: &mut dyn FnM
     // The swaps are judged on the whole mesh (its judge built only for them).
     if !swaps.is_empty() {
         let oriented = whole.oriented_triangles();
-        let judge = Judge::new(&whole.vertices, whole.vertex_normals(&oriented), &whole.adjacency(), total_area.sqrt(), &params.judge).with_curvature(whole_curvature(whole, &parts, &results));
+        let judge = Judge::new(&whole.vertices, whole.vertex_normals(&oriented), &whole.adjacency(), total_area.sqrt(), &params.judge).with_curvature(whole_curvature(whole, parts, &results));
         for (a, b, m) in &swaps {
             let s = swap(whole, (&parts[*a], &parts[*b]), (&results[*a], &results[*b]), [*a, *b], m, &judge, params, shares[*a] + shares[*b]);
             ranked.push((s.verdict.score, s));
@@ -601,10 +600,10 @@ fn several(whole: &Mesh, parts: &[Mesh], params: &Params, progress: &mut dyn FnM
 fn whole_curvature(whole: &Mesh, parts: &[Mesh], results: &[PartResult]) -> Option<Vec<f64>> {
     let mut by_input = vec![0.0; whole.info.input_vertices];
     for (part, r) in parts.iter().zip(results) {
-        let h = r.spectral.curvature.as_ref()?;
-        for (v, &i) in part.input_index.iter().enumerate() {
-            let d = r.hierarchy.as_ref().map_or(v, |hier| hier.owner[v] as usize);
-            by_input[i as usize] = h[d];
+        let on_domain = r.spectral.curvature.as_deref()?;
+        let lifted = r.hierarchy.as_ref().map(|hier| hier.on_fine(on_domain));
+        for (&i, &x) in part.input_index.iter().zip(lifted.as_deref().unwrap_or(on_domain)) {
+            by_input[i as usize] = x;
         }
     }
     Some(whole.input_index.iter().map(|&i| by_input[i as usize]).collect())
@@ -1111,15 +1110,12 @@ fn pipeline(mesh: &Mesh, params: &Params, curvature: Option<&[f64]>, progress: &
     timings.maps_lift = t_stage.elapsed().as_secs_f64();
     timings.maps = t.elapsed().as_secs_f64();
 
-    // Without a proxy the maps' domain is the mesh: its judge serves the report too.
-    // The judge on the mesh: without a proxy the maps' domain is the mesh and its judge serves;
-    // with one, a judge on the mesh's own graph and normals.
-    let (on_mesh, own_adjacency);
-    let mesh_judge = match (&proxy, &ctx.judge) {
-        (None, Some((domain, _, _))) => {
-            on_mesh = domain.clone().with_curvature(mesh_curvature.clone());
-            &on_mesh
-        }
+    // The judge on the mesh, now with the curvature (the final ranking's): without a proxy the
+    // maps' domain is the mesh and its judge serves (the maps stage is done with it); with one,
+    // a judge on the mesh's own graph and normals.
+    let own_adjacency;
+    let mesh_judge = match (&proxy, ctx.judge.take()) {
+        (None, Some((domain, _, _))) => domain,
         _ => {
             let adjacency = match &proxy {
                 Some(p) => &p.mesh_adjacency,
@@ -1128,12 +1124,12 @@ fn pipeline(mesh: &Mesh, params: &Params, curvature: Option<&[f64]>, progress: &
                     &own_adjacency
                 }
             };
-            on_mesh = Judge::new(&mesh.vertices, normals, adjacency, scale, &params.judge).with_curvature(mesh_curvature.clone());
-            &on_mesh
+            Judge::new(&mesh.vertices, normals, adjacency, scale, &params.judge)
         }
-    };
+    }
+    .with_curvature(mesh_curvature.clone());
     let continuous = characterize::continuous_symmetry(basis, &params.continuous);
-    let symmetries = report(mesh, mesh_judge, found, emb, basis, probes, vinfo.diameter, &continuous, params, &mut timings);
+    let symmetries = report(mesh, &mesh_judge, found, emb, basis, probes, vinfo.diameter, &continuous, params, &mut timings);
     timings.total = t_all.elapsed().as_secs_f64();
     if !progress(1.0) {
         return Err(cancelled("report"));

@@ -65,7 +65,8 @@ pub fn raw_mean_curvature(mesh: &Mesh, normals: &[[f64; 3]]) -> (Vec<f64>, Vec<f
     for t in &mesh.triangles {
         let [a, b, c] = t.map(|v| v as usize);
         let twice = norm(cross(sub(p[b], p[a]), sub(p[c], p[a])));
-        if !(twice > 0.0) {
+        // Also skips a NaN area.
+        if twice.is_nan() || twice <= 0.0 {
             continue;
         }
         for (i, j, k) in [(a, b, c), (b, c, a), (c, a, b)] {
@@ -138,7 +139,7 @@ pub fn band_limited(raw: &[f64], basis: &Eigenbasis, tau: f64) -> Vec<f64> {
     }
     // No cue rather than a wrong one: a flat mesh, or a value a near-degenerate triangle's
     // cotangent blew up (the polish's descent compares costs, which NaN would break).
-    if !(median > 0.0 && median.is_finite()) || !h.iter().all(|x| x.is_finite()) {
+    if !(median > 0.0 && median.is_finite() && h.iter().all(|x| x.is_finite())) {
         h.fill(0.0);
     }
     h

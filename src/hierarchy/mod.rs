@@ -117,6 +117,12 @@ impl Hierarchy {
         let seed_positions: Vec<[f64; 3]> = self.seeds.iter().map(|&s| positions[s]).collect();
         crate::maps::proxy::lift(&self.seeds, &self.owner, &seed_positions, &self.coarse_adjacency, &self.fine_adjacency, positions, m)
     }
+
+    /// A field on the coarse mesh's vertices carried to every fine vertex: each takes its
+    /// cell's value (the inverse of [`crate::descriptors::curvature::restrict_to_cells`]).
+    pub fn on_fine(&self, coarse: &[f64]) -> Vec<f64> {
+        self.owner.iter().map(|&c| coarse[c as usize]).collect()
+    }
 }
 
 #[cfg(test)]
