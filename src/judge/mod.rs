@@ -118,6 +118,15 @@ impl Verdict {
     }
 }
 
+/// What a map does to one stencil: the centre's image, whether the centre stays within the
+/// fixed radius, and whether the stencil is flipped (`None`: its image is degenerate or
+/// partly undefined).
+struct Act {
+    image: usize,
+    stays: bool,
+    flipped: Option<bool>,
+}
+
 /// Stencils on a vertex graph (a mesh's or a proxy's), built once per detection.
 pub struct Judge {
     positions: Vec<[f64; 3]>,
@@ -186,34 +195,22 @@ impl Judge {
     pub fn judge(&self, map: &[i64], distortion: f64, max_distortion: f64) -> Verdict {
         let (mut defined, mut fixed, mut judged, mut flipped) = (0usize, 0usize, 0usize, 0usize);
         let mut change = 0.0;
-        for &[v, a, b] in &self.stencils {
-            let tv = map[v as usize];
-            if tv < 0 {
-                continue;
-            }
+        for s in &self.stencils {
+            let Some(act) = self.act(map, s) else { continue };
             defined += 1;
-            let tv = tv as usize;
             if let Some(h) = &self.curvature {
-                change += (h[v as usize] - h[tv]).abs();
+                change += (h[s[0] as usize] - h[act.image]).abs();
             }
-            let stays = norm(sub(self.positions[tv], self.positions[v as usize])) <= self.fixed_radius;
-            let (ta, tb) = (map[a as usize], map[b as usize]);
-            if ta < 0 || tb < 0 {
-                continue;
-            }
-            let (e1, e2) = (sub(self.positions[ta as usize], self.positions[tv]), sub(self.positions[tb as usize], self.positions[tv]));
-            let c = cross(e1, e2);
-            // A degenerate image (collapsed or nearly collinear) has no orientation.
-            if norm(c) <= 0.2 * norm(e1) * norm(e2) {
-                continue;
-            }
-            judged += 1;
-            if dot(c, self.normals[tv]) < 0.0 {
-                flipped += 1;
-            } else if stays {
-                // Locally the identity: the centre stays and its stencil keeps its orientation
-                // (a reflection's fixed curve flips its stencils: not counted).
-                fixed += 1;
+            match act.flipped {
+                None => {}
+                Some(true) => {
+                    judged += 1;
+                    flipped += 1;
+                }
+                Some(false) => {
+                    judged += 1;
+                    fixed += act.stays as usize;
+                }
             }
         }
         let total = self.stencils.len().max(1) as f64;
@@ -225,6 +222,34 @@ impl Judge {
         let fit = if max_distortion > 0.0 && distortion.is_finite() { 1.0 / (1.0 + 2.0 * distortion / max_distortion) } else if distortion.is_finite() { 1.0 } else { 0.0 };
         let keeps = 1.0 / (1.0 + curvature / CURVATURE_HALF);
         Verdict { score: coverage * v.coherence() * (1.0 - fixed) * fit * keeps, ..v }
+    }
+
+    /// The stencil centres where `map` is locally the identity (centre fixed, orientation
+    /// kept): the part of a half-identity that the rest of the map does not carry.
+    pub fn identity_centres(&self, map: &[i64]) -> Vec<usize> {
+        self.stencils.iter().filter(|s| self.act(map, s).is_some_and(|a| a.stays && a.flipped == Some(false))).map(|s| s[0] as usize).collect()
+    }
+
+    /// The stencils' centre vertices.
+    pub fn centres(&self) -> Vec<usize> {
+        self.stencils.iter().map(|s| s[0] as usize).collect()
+    }
+
+    /// What `map` does to one stencil `[v, a, b]`; `None` when it is undefined at `v`.
+    fn act(&self, map: &[i64], &[v, a, b]: &[u32; 3]) -> Option<Act> {
+        let tv = usize::try_from(map[v as usize]).ok()?;
+        let stays = norm(sub(self.positions[tv], self.positions[v as usize])) <= self.fixed_radius;
+        let (ta, tb) = (map[a as usize], map[b as usize]);
+        if ta < 0 || tb < 0 {
+            return Some(Act { image: tv, stays, flipped: None });
+        }
+        let (e1, e2) = (sub(self.positions[ta as usize], self.positions[tv]), sub(self.positions[tb as usize], self.positions[tv]));
+        let c = cross(e1, e2);
+        // A degenerate image (the stencil collapsed onto a line) has no orientation.
+        if norm(c) <= 0.2 * norm(e1) * norm(e2) {
+            return Some(Act { image: tv, stays, flipped: None });
+        }
+        Some(Act { image: tv, stays, flipped: Some(dot(c, self.normals[tv]) < 0.0) })
     }
 }
 
