@@ -601,34 +601,14 @@ pub fn try_polish(ctx: &Context<'_>, geodesics: &Geodesics, m: &DenseMap, sample
     })
 }
 
-/// The trusted pairs less those in the map's identity part: a pair whose source lies where
-/// the map is locally the identity (the judge's stencil nearest to it has its centre fixed
-/// and its orientation kept; [`crate::judge::Judge::identity_centres`]) is matched again
-/// against the others. A half-identity (the mirror on part of the body, the identity on the
-/// rest) is consistent with itself on each part, so when the identity part holds a large share
-/// of the pairs the median test alone trusts its fixed pairs; the mirror part, right, places
-/// them anew.
+/// The trusted pairs less those in the map's identity part ([`Context::in_identity_part`]): a
+/// pair there is matched again against the others. A half-identity (the mirror on part of the
+/// body, the identity on the rest) is consistent with itself on each part, so when the
+/// identity part holds a large share of the pairs the median test alone trusts its fixed
+/// pairs; the mirror part, right, places them anew.
 fn without_identity_part(ctx: &Context<'_>, m: &DenseMap, src: &[usize], trusted: Vec<usize>) -> Vec<usize> {
-    let Some((judge, _, _)) = &ctx.judge else { return trusted };
-    let fixed = judge.identity_centres(&m.map);
-    if fixed.is_empty() {
-        return trusted;
-    }
-    let p = ctx.positions;
-    let centres = judge.centres();
-    let d2 = |a: [f64; 3], b: [f64; 3]| (a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2);
-    let mut is_fixed = vec![false; p.len()];
-    for &c in &fixed {
-        is_fixed[c] = true;
-    }
-    trusted
-        .into_iter()
-        .filter(|&i| {
-            let a = p[src[i]];
-            let nearest = centres.iter().copied().min_by(|&x, &y| d2(p[x], a).total_cmp(&d2(p[y], a)));
-            !nearest.is_some_and(|c| is_fixed[c])
-        })
-        .collect()
+    let fixed = ctx.in_identity_part(&m.map, src);
+    trusted.into_iter().filter(|&i| !fixed[i]).collect()
 }
 
 #[cfg(test)]

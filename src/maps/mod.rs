@@ -235,6 +235,30 @@ impl<'a> Context<'a> {
         Some(judge.judge(map, distortion, *max_distortion))
     }
 
+    /// Whether each of `vertices` lies where `map` is locally the identity: the judge's
+    /// stencil nearest to it (in space) has its centre fixed and its orientation kept
+    /// ([`crate::judge::Judge::identity_centres`]). All `false` without a judge.
+    pub fn in_identity_part(&self, map: &[i64], vertices: &[usize]) -> Vec<bool> {
+        let mut inside = vec![false; vertices.len()];
+        let Some((judge, _, _)) = &self.judge else { return inside };
+        let fixed = judge.identity_centres(map);
+        if fixed.is_empty() {
+            return inside;
+        }
+        let p = self.positions;
+        let centres = judge.centres();
+        let d2 = |a: [f64; 3], b: [f64; 3]| (a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2);
+        let mut is_fixed = vec![false; p.len()];
+        for &c in &fixed {
+            is_fixed[c] = true;
+        }
+        for (out, &v) in inside.iter_mut().zip(vertices) {
+            let nearest = centres.iter().copied().min_by(|&x, &y| d2(p[x], p[v]).total_cmp(&d2(p[y], p[v])));
+            *out = nearest.is_some_and(|c| is_fixed[c]);
+        }
+        inside
+    }
+
     /// WKS distance between two vertices.
     pub fn wks_distance(&self, a: usize, b: usize) -> f64 {
         let e = self.energies;
@@ -700,6 +724,10 @@ fn profile_images(
     initial_tol: f64,
     params: &MapParams,
 ) -> Option<ProfileMatch> {
+    // No anchor, no profile (the trimmed mismatch needs at least one difference).
+    if anchors.is_empty() {
+        return None;
+    }
     let n = ctx.num_vertices();
     let tol = params.accept * ctx.diameter;
     let mut anchors: Vec<(usize, usize)> = anchors.to_vec();
