@@ -995,4 +995,15 @@ mod tests {
         let tight = x.iter().map(|v: &f64| v.min(0.3)).sum::<f64>() - (x.len() - q) as f64 * 0.3;
         assert!((tight - exact).abs() < 1e-15);
     }
+
+    /// A candidate without anchors has no profile map (it used to panic in the trimmed
+    /// mismatch, which needs one difference at least).
+    #[test]
+    fn no_anchors_no_profile_map() {
+        let mesh = shapes::icosphere(3);
+        let (_basis, emb, desc) = test_spectra(&mesh, 20);
+        let ctx = Context::new(&mesh, &emb, &desc, 1.0, &MapParams::default());
+        let samples: Vec<usize> = (0..mesh.num_vertices()).step_by(10).collect();
+        assert!(profile_map(&ctx, &[], &samples, 0.1, &MapParams::default()).is_none());
+    }
 }
