@@ -680,6 +680,15 @@ mod tests {
         assert_eq!(calls, 1);
     }
 
+    /// The embedding and signatures of `mesh` (default eigenpairs), `count` farthest-point
+    /// samples and their biharmonic diameter: the polish tests' setting.
+    fn spectra_and_samples(mesh: &crate::Mesh, count: usize) -> (crate::distance::BiharmonicEmbedding, faer::Mat<f64>, Vec<usize>, f64) {
+        let (_basis, emb, desc) = test_spectra(mesh, crate::spectral::EigenParams::default().k);
+        let samples = farthest_point(&emb, count, 0).vertices;
+        let diameter = samples.iter().flat_map(|&a| samples.iter().map(move |&b| (a, b))).map(|(a, b)| emb.dist(a, b)).fold(0.0, f64::max);
+        (emb, desc, samples, diameter)
+    }
+
     /// A map that is right except on one leg, which it maps to itself, is repaired: the leg's
     /// samples disagree with the rest and are matched again, and the dense pass follows them.
     /// (On the rest pose with noise: the posed quadruped's legs are bent by skinning, which
@@ -688,10 +697,7 @@ mod tests {
     fn polish_repairs_a_wrongly_mapped_leg() {
         let c = shapes::quadruped(4, Pose::Rest, 0.002, 3);
         let n = c.mesh.num_vertices();
-        let (_basis, emb, desc) = test_spectra(&c.mesh, crate::spectral::EigenParams::default().k);
-        let samples = farthest_point(&emb, 64, 0).vertices;
-        let emb_ref = &emb;
-        let diameter = samples.iter().flat_map(|&a| samples.iter().map(move |&b| emb_ref.dist(a, b))).fold(0.0, f64::max);
+        let (emb, desc, samples, diameter) = spectra_and_samples(&c.mesh, 64);
         let params = MapParams::default();
         let ctx = Context::new(&c.mesh, &emb, &desc, diameter, &params);
         let image: Vec<usize> = (0..n).map(|v| if c.limb[v] == 0 { v } else { c.mirror[v] as usize }).collect();
@@ -722,10 +728,7 @@ mod tests {
     fn polish_repairs_a_half_identity() {
         let c = shapes::quadruped(4, Pose::Walking, 0.0, 0);
         let n = c.mesh.num_vertices();
-        let (_basis, emb, desc) = test_spectra(&c.mesh, crate::spectral::EigenParams::default().k);
-        let samples = farthest_point(&emb, 128, 0).vertices;
-        let emb_ref = &emb;
-        let diameter = samples.iter().flat_map(|&a| samples.iter().map(move |&b| emb_ref.dist(a, b))).fold(0.0, f64::max);
+        let (emb, desc, samples, diameter) = spectra_and_samples(&c.mesh, 128);
         let params = MapParams::default();
         let mut z: Vec<f64> = c.mesh.vertices.iter().map(|p| p[2]).collect();
         z.sort_by(f64::total_cmp);
