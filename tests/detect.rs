@@ -564,11 +564,12 @@ fn thin_legs_survive_the_hierarchy() {
 /// Noisy quadrupeds at 41k vertices with default parameters, so detected on the hierarchy's
 /// 6,000-vertex coarse mesh (`hierarchy`): the mirror is found in every case, and all 12 leg
 /// maps are (measured: mirror 0.955–0.98 acc@0.05, leg maps ≥ 0.909 acc@0.1); it is the
-/// strongest symmetry in 6 of the 8: on noise 0.005 seeds 0 and 1 a wrong reflection (acc
-/// 0.01) ranks first, by judge scores 0.317 against 0.308 and 0.383 against 0.359. The
-/// judge's reversal there rests on 46–49 stencils: on these noisy 41k-vertex meshes most
-/// stencil candidates find their reach on one side only (see `docs/accuracy.md`, session 18;
-/// seed 0 ranked the mirror first until the polish stopped trusting identity parts).
+/// strongest symmetry in 6 of the 8: on noise 0.005 seeds 0 and 1 the generated animal's
+/// front↔back near-mirror (a reflection too) ranks first, by judge scores 0.317 against
+/// 0.308 and 0.383 against 0.359. The judge's reversal there rests on 46–49 stencils: on
+/// these noisy 41k-vertex meshes most stencil candidates have no well-spread pair in their
+/// first ring beyond the reach (see `docs/accuracy.md`, session 18; seed 0 ranked the mirror
+/// first until the polish stopped trusting identity parts).
 #[test]
 fn noisy_quadrupeds_on_the_hierarchy() {
     let mut first_is_mirror = 0;
