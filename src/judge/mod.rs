@@ -52,7 +52,7 @@
 //! value is not fitted. With the factor in the maps stage's judge too, SHREC'16 rose further
 //! (best 61.2 → 62.5) but KIDS pose 4 fell from 0.83 to 0.70 (KIDS −2.7), so it stays out.
 //!
-//! **The polish asks it where a map is the identity** ([`Judge::identity_centres`]: stencils
+//! **The polish asks it where a map is the identity** ([`Judge::identity_flags`]: stencils
 //! whose centre stays and whose orientation is kept): the geodesic polish
 //! ([`crate::maps::geodesic`]) does not trust a sample pair there, so a half-identity's fixed
 //! part is placed anew from the rest of the map (session 18: first 83.8 → 85.2% over
@@ -133,6 +133,14 @@ struct Act {
     flipped: Option<bool>,
 }
 
+impl Act {
+    /// Locally the identity: the centre stays and the stencil keeps its orientation (a
+    /// reflection's fixed curve flips its stencils: not counted).
+    fn is_identity(&self) -> bool {
+        self.stays && self.flipped == Some(false)
+    }
+}
+
 /// Stencils on a vertex graph (a mesh's or a proxy's), built once per detection.
 pub struct Judge {
     positions: Vec<[f64; 3]>,
@@ -207,16 +215,10 @@ impl Judge {
             if let Some(h) = &self.curvature {
                 change += (h[s[0] as usize] - h[act.image]).abs();
             }
-            match act.flipped {
-                None => {}
-                Some(true) => {
-                    judged += 1;
-                    flipped += 1;
-                }
-                Some(false) => {
-                    judged += 1;
-                    fixed += act.stays as usize;
-                }
+            if let Some(f) = act.flipped {
+                judged += 1;
+                flipped += usize::from(f);
+                fixed += usize::from(act.is_identity());
             }
         }
         let total = self.stencils.len().max(1) as f64;
@@ -230,15 +232,10 @@ impl Judge {
         Verdict { score: coverage * v.coherence() * (1.0 - fixed) * fit * keeps, ..v }
     }
 
-    /// The stencil centres where `map` is locally the identity (centre fixed, orientation
-    /// kept): the part of a half-identity that the rest of the map does not carry.
-    pub fn identity_centres(&self, map: &[i64]) -> Vec<usize> {
-        self.stencils.iter().filter(|s| self.act(map, s).is_some_and(|a| a.stays && a.flipped == Some(false))).map(|s| s[0] as usize).collect()
-    }
-
-    /// The stencils' centre vertices.
-    pub fn centres(&self) -> Vec<usize> {
-        self.stencils.iter().map(|s| s[0] as usize).collect()
+    /// Every stencil's centre vertex, and whether `map` is locally the identity there (centre
+    /// fixed, orientation kept): where it is, a half-identity's fixed part lies.
+    pub fn identity_flags(&self, map: &[i64]) -> Vec<(usize, bool)> {
+        self.stencils.iter().map(|s| (s[0] as usize, self.act(map, s).is_some_and(|a| a.is_identity()))).collect()
     }
 
     /// What `map` does to one stencil `[v, a, b]`; `None` when it is undefined at `v`.

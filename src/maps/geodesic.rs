@@ -18,7 +18,7 @@
 //!    reversed pairs `(b_i, a_i)` are anchors too: twice as dense a set, from the same searches.
 //!    A pair in the map's *identity part* is not trusted either: where the judge's stencil
 //!    nearest to its source has its centre fixed and its orientation kept
-//!    ([`crate::judge::Judge::identity_centres`]). A half-identity is consistent with itself
+//!    ([`crate::judge::Judge::identity_flags`]). A half-identity is consistent with itself
 //!    on each part, so the median test trusted its fixed pairs whenever the identity part
 //!    held a large share of them (TOSCA's victoria2: 51 of 126 trusted pairs), and the polish
 //!    kept the identity there. Measured over shared/data (116 shapes, best / first acc@0.05):

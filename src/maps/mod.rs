@@ -36,6 +36,7 @@ pub mod zoomout;
 pub use zoomout::zoomout;
 
 use crate::distance::BiharmonicEmbedding;
+use crate::mesh::vec3::{dot, sub};
 use crate::mesh::Mesh;
 use crate::spectral::Eigenbasis;
 
@@ -237,26 +238,19 @@ impl<'a> Context<'a> {
 
     /// Whether each of `vertices` lies where `map` is locally the identity: the judge's
     /// stencil nearest to it (in space) has its centre fixed and its orientation kept
-    /// ([`crate::judge::Judge::identity_centres`]). All `false` without a judge.
+    /// ([`crate::judge::Judge::identity_flags`]). All `false` without a judge.
     pub fn in_identity_part(&self, map: &[i64], vertices: &[usize]) -> Vec<bool> {
-        let mut inside = vec![false; vertices.len()];
-        let Some((judge, _, _)) = &self.judge else { return inside };
-        let fixed = judge.identity_centres(map);
-        if fixed.is_empty() {
-            return inside;
+        let Some((judge, _, _)) = &self.judge else { return vec![false; vertices.len()] };
+        let flags = judge.identity_flags(map);
+        if !flags.iter().any(|&(_, fixed)| fixed) {
+            return vec![false; vertices.len()];
         }
         let p = self.positions;
-        let centres = judge.centres();
-        let d2 = |a: [f64; 3], b: [f64; 3]| (a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2);
-        let mut is_fixed = vec![false; p.len()];
-        for &c in &fixed {
-            is_fixed[c] = true;
-        }
-        for (out, &v) in inside.iter_mut().zip(vertices) {
-            let nearest = centres.iter().copied().min_by(|&x, &y| d2(p[x], p[v]).total_cmp(&d2(p[y], p[v])));
-            *out = nearest.is_some_and(|c| is_fixed[c]);
-        }
-        inside
+        let d2 = |a: usize, b: usize| {
+            let d = sub(p[a], p[b]);
+            dot(d, d)
+        };
+        vertices.iter().map(|&v| flags.iter().min_by(|x, y| d2(x.0, v).total_cmp(&d2(y.0, v))).is_some_and(|&(_, fixed)| fixed)).collect()
     }
 
     /// WKS distance between two vertices.
