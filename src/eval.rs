@@ -5,6 +5,10 @@
 //! Geodesics are Dijkstra distances on the edge graph, a slight overestimate of the true
 //! surface distance (by a few percent on regular meshes), stopped at the largest radius asked
 //! for, so scoring costs a local search per vertex, not an all-pairs matrix.
+//!
+//! [`judge_maps`] gives the verdict the detection's judge ([`crate::judge`]) would give any
+//! map, the ground truth's included: where the truth outscores every reported map and was not
+//! found, the search failed; where a wrong map outscores the truth, the judge did.
 
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
@@ -106,6 +110,38 @@ pub fn accuracy(mesh: &Mesh, pred: &[i64], truth: &[(usize, Vec<usize>)], radii:
     hits.iter().map(|&h| h as f64 / truth.len().max(1) as f64).collect()
 }
 
+/// The report phase's verdict ([`crate::judge::Judge::judge`], with its sample distortion) on
+/// each of `maps` (an image per vertex of `mesh`, −1 outside the map; entries out of range
+/// count as −1), as a detection of `mesh` with `params` at full resolution would judge its own
+/// maps: the same eigenbasis, samples, distortion scale, normals and band-limited curvature.
+/// A mesh of several components is judged whole, and a mesh large enough for the hierarchy
+/// ([`crate::hierarchy`]) at full resolution, so there the verdicts are not the detection's.
+/// Returns each map's verdict and its sample distortion.
+pub fn judge_maps(mesh: &Mesh, params: &crate::Params, maps: &[Vec<i64>]) -> Result<Vec<(crate::judge::Verdict, f64)>, crate::Error> {
+    use crate::descriptors::curvature::{band_limited, raw_mean_curvature};
+    let (mesh, _) = mesh.normalized();
+    let n = mesh.num_vertices();
+    let mut eigen = params.eigen.clone();
+    eigen.seed = params.seed;
+    eigen.k = eigen.k.clamp(3.min(n), n);
+    let basis = crate::spectral::Eigenbasis::compute_with_progress(&mesh, &eigen, &mut |_| true)?;
+    let emb = crate::distance::biharmonic(&basis);
+    let samples = crate::sampling::farthest_point(&emb, params.samples, params.seed).vertices;
+    // Voting's diameter: the largest biharmonic distance between samples.
+    let diameter = samples.iter().flat_map(|&a| samples.iter().map(move |&b| (a, b))).map(|(a, b)| emb.dist(a, b)).fold(0.0, f64::max);
+    let normals = mesh.vertex_normals(&mesh.oriented_triangles());
+    let curvature = (params.maps.curvature_weight > 0.0).then(|| band_limited(&raw_mean_curvature(&mesh, &normals).0, &basis, params.maps.curvature_time));
+    let judge = crate::judge::Judge::new(&mesh.vertices, normals, &mesh.adjacency(), mesh.area().sqrt(), &params.judge).with_curvature(curvature);
+    Ok(maps
+        .iter()
+        .map(|map| {
+            let map: Vec<i64> = (0..n).map(|v| map.get(v).copied().filter(|&w| w >= 0 && (w as usize) < n).unwrap_or(-1)).collect();
+            let distortion = crate::characterize::sample_distortion(&map, &samples, &emb, diameter);
+            (judge.judge(&map, distortion, params.max_distortion), distortion)
+        })
+        .collect())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -138,5 +174,29 @@ mod tests {
         let identity: Vec<i64> = (0..mesh.num_vertices() as i64).collect();
         let acc = accuracy(&mesh, &identity, &truth, &[0.05])[0];
         assert!(acc > 0.0 && acc < 0.2, "{acc}");
+    }
+
+    /// The judge's verdicts on given maps: on the rest quadruped its exact mirror reverses
+    /// orientation, fixes almost nothing and outscores the identity (which fixes everything,
+    /// score 0) and a half-identity; the detection's own first map gets the verdict the
+    /// detection reported for it.
+    #[test]
+    fn the_judge_of_given_maps_matches_the_detection() {
+        let c = shapes::quadruped(4, shapes::Pose::Rest, 0.0, 0);
+        let n = c.mesh.num_vertices();
+        let mirror: Vec<i64> = c.mirror.iter().map(|&m| if m == u32::MAX { -1 } else { m as i64 }).collect();
+        let identity: Vec<i64> = (0..n as i64).collect();
+        let half: Vec<i64> = (0..n).map(|v| if c.mesh.vertices[v][2] > 0.0 { mirror[v] } else { v as i64 }).collect();
+        let params = crate::Params::default();
+        let d = crate::detect(&c.mesh, &params, &mut |_| true).unwrap();
+        let first = d.symmetries[0].map.clone();
+        let v = judge_maps(&c.mesh, &params, &[mirror, identity, half, first, vec![3; 2]]).unwrap();
+        assert!(v[0].0.reversal > 0.95 && v[0].0.fixed < 0.05 && v[0].1 < 0.01, "mirror: {:?}", v[0]);
+        assert!(v[1].0.fixed > 0.95 && v[1].0.score == 0.0, "identity: {:?}", v[1]);
+        assert!(v[0].0.score > 0.5 && v[0].0.score > 2.0 * v[2].0.score, "mirror {:?} against half {:?}", v[0], v[2]);
+        let reported = &d.symmetries[0];
+        assert!((v[3].0.score - reported.verdict.score).abs() < 1e-9 && (v[3].1 - reported.distortion).abs() < 1e-12, "{:?} against {} {}", v[3], reported.verdict.score, reported.distortion);
+        // A map too short: its missing entries are unmapped, nothing panics.
+        assert!(v[4].0.coverage < 0.01);
     }
 }

@@ -1,7 +1,7 @@
 //! `intrinsym-eval`: the evaluation protocol of DESIGN.md on shapes with known symmetry.
 //!
 //! ```text
-//! intrinsym-eval [--data DIR] [--peer DIR] [--tsv FILE] [--symmetries FILE] [--generated] [--only NAME] [--set KEY=VALUE]...
+//! intrinsym-eval [--data DIR] [--peer DIR] [--tsv FILE] [--symmetries FILE] [--judge-truth] [--generated] [--only NAME] [--set KEY=VALUE]...
 //! ```
 //! For every `NAME.off` with a `NAME.sym.txt` (two 0-based columns `x  sym_x`) under DIR
 //! (default `../shared/data`, searched recursively one level), runs detection with default
@@ -9,7 +9,9 @@
 //! ground-truth pairs whose predicted image is within geodesic distance r·√area of the true one
 //! (edge-graph Dijkstra; unmapped counts as wrong). `--generated` also scores the generated
 //! shapes (posed and noisy quadrupeds, star). Prints a Markdown table. `--set` overrides one
-//! parameter for an experiment (keys: see [`set_param`]).
+//! parameter for an experiment (keys: see [`set_param`]). `--judge-truth` adds to the
+//! `--symmetries` table a line per shape for the ground truth itself (index `truth`): the
+//! judge's verdict on it, as [`intrinsym::eval::judge_maps`] gives it.
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -146,6 +148,27 @@ fn score_all(mesh: &Mesh, truths: &[(String, Vec<(usize, Vec<usize>)>)], params:
         .collect()
 }
 
+/// The `--symmetries` line of the ground truth itself (index `truth`): the verdict the judge
+/// would give it ([`eval::judge_maps`]), to tell a failed search (the truth outscores what was
+/// reported) from a failed judge (a wrong map outscores the truth).
+fn truth_line(name: &str, mesh: &Mesh, truth: &[(usize, Vec<usize>)], params: &Params) -> String {
+    let mut map = vec![-1i64; mesh.num_vertices()];
+    for (a, b) in truth {
+        map[*a] = b[0] as i64;
+    }
+    let a = eval::accuracy(mesh, &map, truth, &[0.05, 0.10]);
+    match eval::judge_maps(mesh, params, &[map]) {
+        Ok(v) => {
+            let (v, distortion) = &v[0];
+            format!("{name}\ttruth\t{:.4}\t{:.4}\tglobal\t2\t{:.4}\t{:.4}\t{:.4}\t{:.5}\tNaN\t{:.4}\t{:.4}", a[0], a[1], v.reversal, v.fixed, v.coverage, distortion, v.score, v.curvature)
+        }
+        Err(e) => {
+            eprintln!("{name}: the truth's verdict: {e}");
+            format!("{name}\ttruth\t{:.4}\t{:.4}\tglobal\t2\tNaN\tNaN\tNaN\tNaN\tNaN\tNaN\tNaN", a[0], a[1])
+        }
+    }
+}
+
 /// Reads a cached peer map (`NAME.map`, one image vertex per input vertex) and scores it.
 fn score_peer(path: &Path, mesh: &Mesh, to_mesh: &[usize], truth: &[(usize, Vec<usize>)]) -> Option<(f64, f64)> {
     let text = std::fs::read_to_string(path).ok()?;
@@ -255,7 +278,7 @@ fn write_tsv(path: &Path, rows: &[Row]) -> std::io::Result<()> {
     std::fs::write(path, out)
 }
 
-const USAGE: &str = "usage: intrinsym-eval [--data DIR] [--peer DIR] [--tsv FILE] [--symmetries FILE] [--generated] [--only NAME] [--set KEY=VALUE]...";
+const USAGE: &str = "usage: intrinsym-eval [--data DIR] [--peer DIR] [--tsv FILE] [--symmetries FILE] [--judge-truth] [--generated] [--only NAME] [--set KEY=VALUE]...";
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
@@ -264,6 +287,7 @@ fn main() {
     let mut tsv: Option<PathBuf> = None;
     let mut symmetries_tsv: Option<PathBuf> = None;
     let mut generated = false;
+    let mut judge_truth = false;
     let mut only: Option<String> = None;
     let mut params = Params::default();
     let mut i = 1;
@@ -292,6 +316,7 @@ fn main() {
                 symmetries_tsv = Some(PathBuf::from(value(i)));
             }
             "--generated" => generated = true,
+            "--judge-truth" => judge_truth = true,
             "--only" => {
                 i += 1;
                 only = Some(value(i));
@@ -360,6 +385,9 @@ fn main() {
             .collect();
         let mut r = score(&name, &mesh, &truth, &params);
         r.dataset = dataset;
+        if judge_truth {
+            r.symmetries.push(truth_line(&name, &mesh, &truth, &params));
+        }
         r.peer = peer_dir.as_ref().and_then(|d| score_peer(&d.join(format!("{name}.map")), &mesh, &to_mesh, &truth));
         print_row(&r);
         rows.push(r);
