@@ -8,8 +8,9 @@
 //! `spiked`: [`shapes::spiked`], three spikes in a row; `lopsided` and `ellipsoid`, shapes
 //! without repeated parts), `LEVEL` (icosphere level, default 5),
 //! `SEED` (noise seed), `PARTS=0` (without the parts stage), and overrides `EPS`, `ACCEPT`, `DIST`, `MAXC`, `MAXR`, `PROXY` (proxy
-//! vertices). The last line, `ordered pairs found: F of P (min acc …)`, counts the ordered
-//! part pairs with acc@0.1 ≥ 0.8 (issue 15's target).
+//! vertices), `HIER` (the hierarchy's coarse vertices, for LEVEL ≥ 6). The last line,
+//! `ordered pairs found: F of P (min acc …)`, counts the ordered part pairs with acc@0.1 ≥ 0.8
+//! (issue 15's target).
 use intrinsym::shapes::{self, Pose};
 use intrinsym::{detect, eval, Params};
 fn main() {
@@ -40,6 +41,7 @@ fn main() {
     if let Ok(v) = std::env::var("DIST") { p.max_distortion = v.parse().unwrap(); }
     if let Ok(v) = std::env::var("MAXC") { p.max_candidates = v.parse().unwrap(); }
     if let Ok(v) = std::env::var("MAXR") { p.max_refinements = v.parse().unwrap(); }
+    if let Ok(v) = std::env::var("HIER") { p.hierarchy_vertices = v.parse().unwrap(); }
     if let Ok(v) = std::env::var("PROXY") { p.maps.proxy_vertices = v.parse().unwrap(); }
     let d = detect(&c.mesh, &p, &mut |_| true).unwrap();
     let t = &d.timings;
