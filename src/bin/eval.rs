@@ -11,7 +11,8 @@
 //! shapes (posed and noisy quadrupeds, star). Prints a Markdown table. `--set` overrides one
 //! parameter for an experiment (keys: see [`set_param`]). `--judge-truth` adds to the
 //! `--symmetries` table a line per shape for the ground truth itself (index `truth`): the
-//! judge's verdict on it, as [`intrinsym::eval::judge_maps`] gives it.
+//! judge's verdict on it, as [`intrinsym::eval::judge_maps`] gives it, and prints a table of
+//! the shapes whose first symmetry is below 0.7 with the cause: search or judge.
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -38,6 +39,10 @@ struct Row {
     /// Every reported symmetry with its accuracy and the judge's terms, a TSV line each
     /// (`--symmetries FILE`: the data the judge's design is checked on).
     symmetries: Vec<String>,
+    /// Each reported symmetry's acc@0.05 and judge's score, in report order.
+    scores: Vec<(f64, f64)>,
+    /// The judge's score of the ground truth and the truth's stencil coverage (`--judge-truth`).
+    truth: Option<(f64, f64)>,
 }
 
 fn score(name: &str, mesh: &Mesh, truth: &[(usize, Vec<usize>)], params: &Params) -> Row {
@@ -111,6 +116,7 @@ fn score_all(mesh: &Mesh, truths: &[(String, Vec<(usize, Vec<usize>)>)], params:
             let mut best = (0.0, 0.0, 0usize);
             let mut first = (0.0, 0.0);
             let mut symmetries = Vec::new();
+            let mut scores = Vec::new();
             match &det {
                 Ok(d) => {
                     for (i, s) in d.symmetries.iter().enumerate() {
@@ -120,6 +126,7 @@ fn score_all(mesh: &Mesh, truths: &[(String, Vec<(usize, Vec<usize>)>)], params:
                             "{name}\t{i}\t{:.4}\t{:.4}\t{}\t{}\t{:.4}\t{:.4}\t{:.4}\t{:.5}\t{:.4}\t{:.4}\t{:.4}",
                             a[0], a[1], s.kind.as_str(), s.order, v.reversal, v.fixed, v.coverage, s.distortion, s.complexity, v.score, v.curvature
                         ));
+                        scores.push((a[0], v.score));
                         if i == 0 {
                             first = (a[0], a[1]);
                         }
@@ -143,6 +150,8 @@ fn score_all(mesh: &Mesh, truths: &[(String, Vec<(usize, Vec<usize>)>)], params:
                 found,
                 rank: best.2,
                 symmetries,
+                scores,
+                truth: None,
             }
         })
         .collect()
@@ -151,7 +160,7 @@ fn score_all(mesh: &Mesh, truths: &[(String, Vec<(usize, Vec<usize>)>)], params:
 /// The `--symmetries` line of the ground truth itself (index `truth`): the verdict the judge
 /// would give it ([`eval::judge_maps`]), to tell a failed search (the truth outscores what was
 /// reported) from a failed judge (a wrong map outscores the truth).
-fn truth_line(name: &str, mesh: &Mesh, truth: &[(usize, Vec<usize>)], params: &Params) -> String {
+fn truth_line(name: &str, mesh: &Mesh, truth: &[(usize, Vec<usize>)], params: &Params) -> (String, Option<(f64, f64)>) {
     let mut map = vec![-1i64; mesh.num_vertices()];
     for (a, b) in truth {
         map[*a] = b[0] as i64;
@@ -160,11 +169,12 @@ fn truth_line(name: &str, mesh: &Mesh, truth: &[(usize, Vec<usize>)], params: &P
     match eval::judge_maps(mesh, params, &[map]) {
         Ok(v) => {
             let (v, distortion) = &v[0];
-            format!("{name}\ttruth\t{:.4}\t{:.4}\tglobal\t2\t{:.4}\t{:.4}\t{:.4}\t{:.5}\tNaN\t{:.4}\t{:.4}", a[0], a[1], v.reversal, v.fixed, v.coverage, distortion, v.score, v.curvature)
+            let line = format!("{name}\ttruth\t{:.4}\t{:.4}\tglobal\t2\t{:.4}\t{:.4}\t{:.4}\t{:.5}\tNaN\t{:.4}\t{:.4}", a[0], a[1], v.reversal, v.fixed, v.coverage, distortion, v.score, v.curvature);
+            (line, Some((v.score, v.coverage)))
         }
         Err(e) => {
             eprintln!("{name}: the truth's verdict: {e}");
-            format!("{name}\ttruth\t{:.4}\t{:.4}\tglobal\t2\tNaN\tNaN\tNaN\tNaN\tNaN\tNaN\tNaN", a[0], a[1])
+            (format!("{name}\ttruth\t{:.4}\t{:.4}\tglobal\t2\tNaN\tNaN\tNaN\tNaN\tNaN\tNaN\tNaN", a[0], a[1]), None)
         }
     }
 }
@@ -262,6 +272,32 @@ fn print_summary(rows: &[Row]) {
             rs.len(),
             mean(&|r| r.seconds)
         );
+    }
+}
+
+/// `--judge-truth`: every shape whose first symmetry is below 0.7 at acc@0.05, with the cause.
+/// The truth's score is divided by its stencil coverage (annotations leave vertices out, and
+/// the score counts them against it). *search*: that outscores every reported map, so the
+/// truth was not found; *judge*: a wrong reported map (acc@0.05 < 0.5) outscores it, so it
+/// would lose even if found; otherwise *neither*.
+fn print_causes(rows: &[Row]) {
+    println!();
+    println!("| dataset | shape | first / best @0.05 | truth's score (over coverage) | best reported score | best wrong score | cause |");
+    println!("|---|---|---|---|---|---|---|");
+    for r in rows.iter().filter(|r| r.first05 < 0.7) {
+        let Some((score, coverage)) = r.truth else { continue };
+        let truth = if coverage > 0.0 { score / coverage } else { score };
+        let top = r.scores.iter().map(|s| s.1).fold(0.0, f64::max);
+        let wrong = r.scores.iter().filter(|s| s.0 < 0.5).map(|s| s.1).fold(f64::NAN, f64::max);
+        let cause = if truth > top {
+            "search"
+        } else if wrong > truth {
+            "judge"
+        } else {
+            "neither"
+        };
+        let wrong = if wrong.is_nan() { "–".to_string() } else { format!("{wrong:.3}") };
+        println!("| {} | {} | {:.2} / {:.2} | {:.3} ({:.3}) | {:.3} | {} | {} |", r.dataset, r.name, r.first05, r.acc05, score, truth, top, wrong, cause);
     }
 }
 
@@ -386,7 +422,9 @@ fn main() {
         let mut r = score(&name, &mesh, &truth, &params);
         r.dataset = dataset;
         if judge_truth {
-            r.symmetries.push(truth_line(&name, &mesh, &truth, &params));
+            let (line, verdict) = truth_line(&name, &mesh, &truth, &params);
+            r.symmetries.push(line);
+            r.truth = verdict;
         }
         r.peer = peer_dir.as_ref().and_then(|d| score_peer(&d.join(format!("{name}.map")), &mesh, &to_mesh, &truth));
         print_row(&r);
@@ -425,6 +463,9 @@ fn main() {
     }
     if !rows.is_empty() {
         print_summary(&rows);
+        if judge_truth {
+            print_causes(&rows);
+        }
     }
     if let Some(path) = symmetries_tsv {
         let mut out = String::from("shape\tindex\tacc05\tacc10\tkind\torder\treversal\tfixed\tcoverage\tdistortion\tcomplexity\tscore\tcurvature\n");
