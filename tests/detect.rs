@@ -607,6 +607,24 @@ fn the_hierarchy_reports_progress_and_can_be_cancelled() {
     assert!(matches!(e, Error::Cancelled { stage: "hierarchy" }), "{e:?}");
 }
 
+/// The posed directed quadruped with 0.5% noise (10k vertices, three noise seeds) keeps its
+/// left–right mirror among the reported symmetries (measured 0.983–0.985 acc@0.05), and no
+/// global map of order 3 or more is reported: the mirror is its only global symmetry. Session
+/// 19: projecting the refinement's last ZoomOut onto involutions raised shared/data by 0.3
+/// points and passed every other test, but lost this mirror on seed 1 (0.98 → 0.13) and
+/// reported global maps of orders 10 and 7 there.
+#[test]
+fn noisy_directed_quadrupeds_keep_their_mirror() {
+    for seed in 1..=3 {
+        let c = shapes::directed_quadruped(5, Pose::Walking, 0.005, seed);
+        let d = run(&c);
+        let best = d.symmetries.iter().map(|s| eval::accuracy(&c.mesh, &s.map, &mirror_truth(&c), &[0.05])[0]).fold(0.0, f64::max);
+        assert!(best >= 0.9, "seed {seed}: mirror acc@0.05 {best}");
+        let orders: Vec<usize> = d.symmetries.iter().filter(|s| s.kind == Kind::Global).map(|s| s.order).collect();
+        assert!(orders.iter().all(|&o| o <= 2), "seed {seed}: global symmetries of orders {orders:?}");
+    }
+}
+
 /// Issue 15: a quadruped whose identical legs are directed (knee, toe forward) has only its
 /// left–right mirror as a global symmetry; a front leg maps onto a hind leg by a translation
 /// of the leg. With the parts stage (`intrinsym::parts`) most ordered leg pairs are found
