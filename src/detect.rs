@@ -149,6 +149,29 @@ impl Default for Params {
     }
 }
 
+impl Params {
+    /// The eigensolver's parameters for a mesh of `n` vertices: the detection's seed, and at
+    /// least 3 pairs (WKS needs an energy range), at most one per vertex.
+    pub(crate) fn eigen_for(&self, n: usize) -> EigenParams {
+        let mut eigen = self.eigen.clone();
+        eigen.seed = self.seed;
+        eigen.k = eigen.k.clamp(3.min(n), n);
+        eigen
+    }
+}
+
+/// The polish's and the judge's band-limited mean curvature of `basis`'s mesh
+/// ([`crate::descriptors::curvature`]), from the raw curvature `raw` when given (a coarse
+/// mesh's, averaged from its fine mesh) or else estimated on `mesh` with its `normals`; `None`
+/// when the curvature term is off.
+pub(crate) fn band_limited_curvature(raw: Option<&[f64]>, mesh: &Mesh, normals: &[[f64; 3]], basis: &Eigenbasis, maps: &MapParams) -> Option<Vec<f64>> {
+    use crate::descriptors::curvature::{band_limited, raw_mean_curvature};
+    (maps.curvature_weight > 0.0).then(|| match raw {
+        Some(raw) => band_limited(raw, basis, maps.curvature_time),
+        None => band_limited(&raw_mean_curvature(mesh, normals).0, basis, maps.curvature_time),
+    })
+}
+
 /// Whether a symmetry covers the whole shape.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Kind {
@@ -692,11 +715,7 @@ fn pipeline(mesh: &Mesh, params: &Params, curvature: Option<&[f64]>, progress: &
     let n = mesh.num_vertices();
 
     let t = Instant::now();
-    let mut eigen = params.eigen.clone();
-    eigen.seed = params.seed;
-    // At least 3 pairs (WKS needs an energy range), at most one per vertex.
-    eigen.k = eigen.k.clamp(3.min(n), n);
-    let basis_owned = Eigenbasis::compute_with_progress(mesh, &eigen, &mut |f| progress(0.6 * f))?;
+    let basis_owned = Eigenbasis::compute_with_progress(mesh, &params.eigen_for(n), &mut |f| progress(0.6 * f))?;
     let basis = &basis_owned;
     timings.spectral = t.elapsed().as_secs_f64();
 
@@ -757,14 +776,7 @@ fn pipeline(mesh: &Mesh, params: &Params, curvature: Option<&[f64]>, progress: &
     let oriented = mesh.oriented_triangles();
     let normals = mesh.vertex_normals(&oriented);
     // The polish's curvature term (`crate::descriptors::curvature`), on the maps' domain.
-    let mesh_curvature = (params.maps.curvature_weight > 0.0).then(|| {
-        use crate::descriptors::curvature::{band_limited, raw_mean_curvature};
-        let time = params.maps.curvature_time;
-        match curvature {
-            Some(raw) => band_limited(raw, fine_basis, time),
-            None => band_limited(&raw_mean_curvature(mesh, &normals).0, fine_basis, time),
-        }
-    });
+    let mesh_curvature = band_limited_curvature(curvature, mesh, &normals, fine_basis, &params.maps);
     ctx.curvature = match (&proxy, &mesh_curvature) {
         (Some(p), Some(h)) => Some(p.seeds.iter().map(|&s| h[s]).collect()),
         (_, h) => h.clone(),

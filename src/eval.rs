@@ -118,19 +118,14 @@ pub fn accuracy(mesh: &Mesh, pred: &[i64], truth: &[(usize, Vec<usize>)], radii:
 /// ([`crate::hierarchy`]) at full resolution, so there the verdicts are not the detection's.
 /// Returns each map's verdict and its sample distortion.
 pub fn judge_maps(mesh: &Mesh, params: &crate::Params, maps: &[Vec<i64>]) -> Result<Vec<(crate::judge::Verdict, f64)>, crate::Error> {
-    use crate::descriptors::curvature::{band_limited, raw_mean_curvature};
     let (mesh, _) = mesh.normalized();
     let n = mesh.num_vertices();
-    let mut eigen = params.eigen.clone();
-    eigen.seed = params.seed;
-    eigen.k = eigen.k.clamp(3.min(n), n);
-    let basis = crate::spectral::Eigenbasis::compute_with_progress(&mesh, &eigen, &mut |_| true)?;
+    let basis = crate::spectral::Eigenbasis::compute_with_progress(&mesh, &params.eigen_for(n), &mut |_| true)?;
     let emb = crate::distance::biharmonic(&basis);
     let samples = crate::sampling::farthest_point(&emb, params.samples, params.seed).vertices;
-    // Voting's diameter: the largest biharmonic distance between samples.
-    let diameter = samples.iter().flat_map(|&a| samples.iter().map(move |&b| (a, b))).map(|(a, b)| emb.dist(a, b)).fold(0.0, f64::max);
+    let diameter = emb.diameter_of(&samples);
     let normals = mesh.vertex_normals(&mesh.oriented_triangles());
-    let curvature = (params.maps.curvature_weight > 0.0).then(|| band_limited(&raw_mean_curvature(&mesh, &normals).0, &basis, params.maps.curvature_time));
+    let curvature = crate::detect::band_limited_curvature(None, &mesh, &normals, &basis, &params.maps);
     let judge = crate::judge::Judge::new(&mesh.vertices, normals, &mesh.adjacency(), mesh.area().sqrt(), &params.judge).with_curvature(curvature);
     Ok(maps
         .iter()

@@ -63,6 +63,12 @@ impl BiharmonicEmbedding {
         self.norms2.is_empty()
     }
 
+    /// The largest distance between two of `vertices` (0 for fewer than two): the scale
+    /// sample distortions are measured in (voting's diameter, over its samples).
+    pub fn diameter_of(&self, vertices: &[usize]) -> f64 {
+        vertices.iter().flat_map(|&a| vertices.iter().map(move |&b| (a, b))).map(|(a, b)| self.dist(a, b)).fold(0.0, f64::max)
+    }
+
     /// Distance between two vertices.
     pub fn dist(&self, x: usize, y: usize) -> f64 {
         let (a, b) = (self.coords.row(x), self.coords.row(y));

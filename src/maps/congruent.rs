@@ -120,7 +120,7 @@ impl<'a> Side<'a> {
         let mesh = part.mesh;
         let ops = orientation::operators(mesh, &mesh.oriented_triangles(), part.basis, part.desc, &maps.orientation)?;
         let samples = farthest_point(part.emb, params.samples, 0).vertices;
-        let diameter = samples.iter().flat_map(|&x| samples.iter().map(move |&y| (x, y))).map(|(x, y)| part.emb.dist(x, y)).fold(0.0, f64::max);
+        let diameter = part.emb.diameter_of(&samples);
         Some(Side {
             part,
             ops,

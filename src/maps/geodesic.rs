@@ -685,7 +685,7 @@ mod tests {
     fn spectra_and_samples(mesh: &crate::Mesh, count: usize) -> (crate::distance::BiharmonicEmbedding, faer::Mat<f64>, Vec<usize>, f64) {
         let (_basis, emb, desc) = test_spectra(mesh, crate::spectral::EigenParams::default().k);
         let samples = farthest_point(&emb, count, 0).vertices;
-        let diameter = samples.iter().flat_map(|&a| samples.iter().map(move |&b| (a, b))).map(|(a, b)| emb.dist(a, b)).fold(0.0, f64::max);
+        let diameter = emb.diameter_of(&samples);
         (emb, desc, samples, diameter)
     }
 
