@@ -46,6 +46,9 @@ enum Command {
         /// Random seed (first sample, eigensolver start).
         #[arg(long, default_value_t = 0)]
         seed: u64,
+        /// Further searches from other first samples (seeds seed+1, seed+2, …) while the strongest symmetry found scores below 0.4; their symmetries are pooled (0: one search).
+        #[arg(long, default_value_t = 2)]
+        restarts: usize,
         /// Good voters: WKS distance below this quantile of all sample pairs.
         #[arg(long, default_value_t = 0.2)]
         wks_quantile: f64,
@@ -165,6 +168,7 @@ fn run(cli: Cli) -> Result<(), intrinsym::Error> {
             k,
             samples,
             seed,
+            restarts,
             wks_quantile,
             eps,
             accept,
@@ -195,6 +199,7 @@ fn run(cli: Cli) -> Result<(), intrinsym::Error> {
             params.eigen.k = k;
             params.samples = samples;
             params.seed = seed;
+            params.restarts = restarts;
             params.voting.wks_quantile = wks_quantile;
             params.voting.eps = eps;
             params.maps.accept = accept;

@@ -684,3 +684,66 @@ fn congruent_components_on_the_hierarchy_are_swapped() {
     assert!(acc > 0.95, "swap acc {acc}");
     assert!(s.verdict.curvature > 0.0 && s.verdict.curvature < 0.25, "{:?}", s.verdict);
 }
+
+/// Parameters of one search from `seed` (no restarts).
+fn one_search(seed: u64) -> Params {
+    let mut p = Params::default();
+    p.seed = seed;
+    p.restarts = 0;
+    p
+}
+
+/// Restarts pool the searches (`Params::restarts`): with every restart forced, the first
+/// reported symmetry is the strongest first symmetry of the single searches from the same
+/// seeds, and the pool reports each symmetry once.
+#[test]
+fn restarts_pool_the_searches_and_the_judge_picks() {
+    let c = shapes::quadruped(4, Pose::Walking, 0.002, 1);
+    let singles: Vec<f64> = (1..4).map(|s| detect(&c.mesh, &one_search(s), &mut |_| true).unwrap().symmetries[0].verdict.score).collect();
+    let mut pooled = one_search(1);
+    pooled.restarts = 2;
+    pooled.restart_below = f64::INFINITY;
+    let d = detect(&c.mesh, &pooled, &mut |_| true).unwrap();
+    let strongest = singles.iter().copied().fold(0.0, f64::max);
+    // (On this shape a later search finds the stronger version: the pool is exercised.)
+    assert!(singles[0] < strongest, "{singles:?}");
+    assert!((d.symmetries[0].verdict.score - strongest).abs() < 1e-12, "pooled first {} against the searches' {singles:?}", d.symmetries[0].verdict.score);
+    // No symmetry twice: no two reported maps of one orientation type agree on most vertices.
+    let n = c.mesh.num_vertices();
+    for (i, a) in d.symmetries.iter().enumerate() {
+        for b in &d.symmetries[..i] {
+            if a.verdict.reverses() == b.verdict.reverses() {
+                let same = (0..n).filter(|&v| a.map[v] >= 0 && a.map[v] == b.map[v]).count();
+                assert!(same < n * 4 / 5, "symmetries {i} and another map {same} of {n} vertices alike");
+            }
+        }
+    }
+    // A search that finds a symmetry the judge trusts ends the searching: the default
+    // threshold on this shape (first score from seed 0 above it) gives the single search's
+    // result.
+    let single = detect(&c.mesh, &one_search(0), &mut |_| true).unwrap();
+    assert!(single.symmetries[0].verdict.score >= Params::default().restart_below, "{}", single.symmetries[0].verdict.score);
+    let default = detect(&c.mesh, &Params::default(), &mut |_| true).unwrap();
+    assert_eq!(default.symmetries[0].map, single.symmetries[0].map);
+}
+
+/// Progress moves on through the restarts and never goes back, and cancelling inside a later
+/// search stops the detection.
+#[test]
+fn restarts_report_progress_and_can_be_cancelled() {
+    let c = shapes::quadruped(3, Pose::Walking, 0.0, 0);
+    let mut p = one_search(0);
+    p.restarts = 2;
+    p.restart_below = f64::INFINITY;
+    let mut calls = Vec::new();
+    detect(&c.mesh, &p, &mut |f| {
+        calls.push(f);
+        true
+    })
+    .unwrap();
+    assert!(calls.windows(2).all(|w| w[1] >= w[0]), "progress went back");
+    assert_eq!(calls.last(), Some(&1.0));
+    assert!(calls.iter().filter(|&&f| f > 0.9 && f < 0.99).count() >= 4, "the later searches report: {:?}", &calls[calls.len().saturating_sub(12)..]);
+    let e = detect(&c.mesh, &p, &mut |f| f < 0.92).unwrap_err();
+    assert!(matches!(e, Error::Cancelled { stage } if stage != "eigenbasis" && stage != "report"), "{e}");
+}

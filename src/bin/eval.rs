@@ -58,6 +58,8 @@ fn set_param(p: &mut Params, kv: &str) -> Result<(), String> {
         "k" => p.eigen.k = u()?,
         "samples" => p.samples = u()?,
         "seed" => p.seed = u()? as u64,
+        "restarts" => p.restarts = u()?,
+        "restart_below" => p.restart_below = f()?,
         "eps" => p.voting.eps = f()?,
         "wks_quantile" => p.voting.wks_quantile = f()?,
         "max_distortion" => p.max_distortion = f()?,

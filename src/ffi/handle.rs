@@ -294,6 +294,15 @@ pub extern "C" fn sym_params_set_seed(params: *mut sym_params, value: u64) -> sy
     set(params, "sym_params_set_seed", "any", true, value, |p| p.params.seed = value)
 }
 
+/// Further searches from other first samples (seeds `seed + 1`, `seed + 2`, …) while the
+/// strongest symmetry found scores below 0.4; their symmetries are pooled and the judge picks.
+/// 0 to 8 (default 2; 0: one search, fastest). Returns `SYM_STATUS_INVALID_ARGUMENT`
+/// (settings unchanged) outside the range.
+#[no_mangle]
+pub extern "C" fn sym_params_set_restarts(params: *mut sym_params, value: usize) -> sym_status {
+    set(params, "sym_params_set_restarts", "0 to 8", value <= 8, value, |p| p.params.restarts = value)
+}
+
 /// Good voters: WKS distance below this quantile of sample pairs, in (0, 1] (default 0.2). Returns `SYM_STATUS_INVALID_ARGUMENT` (settings unchanged) outside the range.
 #[no_mangle]
 pub extern "C" fn sym_params_set_wks_quantile(params: *mut sym_params, value: f64) -> sym_status {

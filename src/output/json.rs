@@ -2,7 +2,7 @@
 //!
 //! ```text
 //! { "vertices": n, "faces": m,
-//!   "params": { "eigenpairs", "samples", "seed", "wks_quantile", "eps", "accept", "polish", "proxy_vertices", "hierarchy_vertices", "groups", "parts" },
+//!   "params": { "eigenpairs", "samples", "seed", "restarts", "wks_quantile", "eps", "accept", "polish", "proxy_vertices", "hierarchy_vertices", "groups", "parts" },
 //!   "timings": { "spectral", "descriptors", "distance", "sampling", "voting", "maps",
 //!                "maps_proxy", "maps_profile", "maps_fmap", "maps_refine", "maps_polish", "maps_compose", "maps_lift", "parts",
 //!                "congruence", "hierarchy", "lift", "characterize", "cluster", "total" },   // seconds
@@ -80,6 +80,7 @@ pub fn to_json(det: &Detection, params: &Params) -> Value {
             "eigenpairs": params.eigen.k,
             "samples": params.samples,
             "seed": params.seed,
+            "restarts": params.restarts,
             "wks_quantile": params.voting.wks_quantile,
             "eps": params.voting.eps,
             "accept": params.maps.accept,

@@ -208,6 +208,9 @@ int main(int argc, char **argv) {
     expect("accept inf", sym_params_set_accept(p, INFINITY), SYM_STATUS_INVALID_ARGUMENT, 1);
     expect("groups 1000", sym_params_set_groups(p, 1000), SYM_STATUS_INVALID_ARGUMENT, 1);
     expect("proxy 10", sym_params_set_proxy_vertices(p, 10), SYM_STATUS_INVALID_ARGUMENT, 1);
+    expect("restarts 9", sym_params_set_restarts(p, 9), SYM_STATUS_INVALID_ARGUMENT, 1);
+    expect("restarts 0", sym_params_set_restarts(p, 0), SYM_STATUS_OK, 0);
+    expect("restarts NULL params", sym_params_set_restarts(NULL, 1), SYM_STATUS_NULL_PARAMETER, 1);
     expect("proxy off", sym_params_set_proxy_vertices(p, 0), SYM_STATUS_OK, 0);
     expect("proxy 6000", sym_params_set_proxy_vertices(p, 6000), SYM_STATUS_OK, 0);
     expect("valid setter", sym_params_set_groups(p, 0), SYM_STATUS_OK, 0);
