@@ -756,10 +756,13 @@ fn pipeline(mesh: &Mesh, params: &Params, curvature: Option<&[f64]>, progress: &
     let normals = mesh.vertex_normals(&oriented);
     // The polish's curvature term (`crate::descriptors::curvature`).
     let mesh_curvature = band_limited_curvature(curvature, mesh, &normals, basis, &params.maps);
-    // The judge on the mesh, with the curvature (the final ranking's): it decides between the
-    // searches' symmetries and ranks the report.
-    let mesh_judge = Judge::new(&mesh.vertices, normals.clone(), &mesh.adjacency(), scale, &params.judge).with_curvature(mesh_curvature.clone());
-    let shared = Shared { mesh, basis, desc: &desc, emb, oriented: &oriented, normals: &normals, curvature: &mesh_curvature, scale };
+    let adjacency = mesh.adjacency();
+    // The judge on the mesh: without the curvature it is the maps stage's when the maps are
+    // made on the mesh itself (every search takes a copy); with it, the final ranking's, which
+    // decides between the searches' symmetries and ranks the report.
+    let plain_judge = Judge::new(&mesh.vertices, normals.clone(), &adjacency, scale, &params.judge);
+    let mesh_judge = plain_judge.clone().with_curvature(mesh_curvature.clone());
+    let shared = Shared { mesh, basis, desc: &desc, emb, oriented: &oriented, normals: &normals, curvature: &mesh_curvature, scale, adjacency: &adjacency, judge: &plain_judge };
     // Searches from different first samples until one finds a symmetry the judge trusts
     // (`Params::restarts`); their symmetries are pooled.
     let mut found: Vec<Found> = Vec::new();
@@ -840,11 +843,17 @@ fn better(a: &Found, than: &Found) -> bool {
     }
 }
 
+/// Whether the report keeps `f` (judged on the mesh): a map of the parts stage, or one whose
+/// curvature change is within `max_curvature_change` (see [`report`]).
+fn reportable(f: &Found, params: &Params) -> bool {
+    f.part || f.verdict.curvature <= params.max_curvature_change
+}
+
 /// The score of the symmetry the report would put first among `found` (judged on the mesh):
-/// the strongest global or partial map the report keeps (not a parts-stage map, curvature
-/// within `max_curvature_change`); 0 without one.
+/// the strongest global or partial map it keeps, not counting the parts stage's (reported
+/// after the others); 0 without one.
 fn strongest(found: &[Found], params: &Params) -> f64 {
-    found.iter().filter(|f| !f.part && f.verdict.curvature <= params.max_curvature_change).map(|f| f.verdict.score).fold(0.0, f64::max)
+    found.iter().filter(|f| !f.part && reportable(f, params)).map(|f| f.verdict.score).fold(0.0, f64::max)
 }
 
 /// What every search of [`pipeline`] shares: the mesh and its spectral quantities, which do
@@ -862,6 +871,10 @@ struct Shared<'a> {
     curvature: &'a Option<Vec<f64>>,
     /// √area.
     scale: f64,
+    /// The mesh's CSR adjacency.
+    adjacency: &'a (Vec<usize>, Vec<u32>),
+    /// The judge on the mesh, without curvature (the maps stage's when it works on the mesh).
+    judge: &'a Judge,
 }
 
 /// One search: the symmetries found from one set of samples, on the mesh's vertices.
@@ -880,7 +893,7 @@ struct Search {
 /// the lift of a proxy's maps to the mesh. `progress` gets the fractions 0.6–0.96 of a
 /// single search. Writes its stages' `timings`.
 fn search(shared: &Shared<'_>, params: &Params, seed: u64, timings: &mut Timings, progress: &mut dyn FnMut(f64) -> bool) -> Result<Search, Error> {
-    let Shared { mesh, basis, desc, emb, oriented, normals, curvature: mesh_curvature, scale } = *shared;
+    let Shared { mesh, basis, desc, emb, oriented, normals, curvature: mesh_curvature, scale, adjacency, judge: mesh_judge } = *shared;
     let cancelled = |stage: &'static str| Error::Cancelled { stage };
     let n = mesh.num_vertices();
     let t = Instant::now();
@@ -922,7 +935,7 @@ fn search(shared: &Shared<'_>, params: &Params, seed: u64, timings: &mut Timings
     let (fine_emb, fine_basis) = (emb, basis);
     let (emb, basis, mut ctx) = match &proxy {
         Some(p) => (&p.emb, &p.basis, Context::on_graph(&p.positions, p.adjacency.clone(), &p.emb, &p.wks, vinfo.diameter, &params.maps)),
-        None => (emb, basis, Context::new(mesh, emb, desc, vinfo.diameter, &params.maps)),
+        None => (emb, basis, Context::on_graph(&mesh.vertices, adjacency.clone(), emb, desc, vinfo.diameter, &params.maps)),
     };
     ctx.basis = Some(basis);
     // The judge on the maps' domain: the mesh, or the proxy graph with the mesh's normals at
@@ -934,7 +947,7 @@ fn search(shared: &Shared<'_>, params: &Params, seed: u64, timings: &mut Timings
     };
     let domain_judge = match &proxy {
         Some(p) => Judge::new(&p.positions, p.seeds.iter().map(|&s| normals[s]).collect(), &p.adjacency, scale, &params.judge),
-        None => Judge::new(&mesh.vertices, normals.to_vec(), &ctx.adjacency, scale, &params.judge),
+        None => mesh_judge.clone(),
     };
     ctx.judge = Some((domain_judge, probes.to_vec(), params.max_distortion));
     let agree_tol = params.maps.accept * 2.0 * vinfo.diameter;
@@ -1278,7 +1291,7 @@ fn report(mesh: &Mesh, mesh_judge: &Judge, mut found: Vec<Found>, emb: &crate::d
     // leg maps, found at acc@0.1 ≥ 0.8, change it by 0.52–1.17 (its thin legs curve far more
     // than the body's median, so a small misplacement there counts for much), and the
     // evidence for the limit comes from the global stage's maps.
-    found.retain(|f| f.part || f.verdict.curvature <= params.max_curvature_change);
+    found.retain(|f| reportable(f, params));
     // Maps between repeated parts after the others (they cover a part of the surface; the first
     // symmetry is what a viewer colours by default).
     found.sort_by(|a, b| a.part.cmp(&b.part).then(b.verdict.score.total_cmp(&a.verdict.score)));

@@ -142,6 +142,7 @@ impl Act {
 }
 
 /// Stencils on a vertex graph (a mesh's or a proxy's), built once per detection.
+#[derive(Clone)]
 pub struct Judge {
     positions: Vec<[f64; 3]>,
     normals: Vec<[f64; 3]>,
