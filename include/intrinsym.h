@@ -7,7 +7,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #define SYM_VERSION_MAJOR 0
-#define SYM_VERSION_MINOR 5
+#define SYM_VERSION_MINOR 6
 #define SYM_VERSION_PATCH 0
 
 
@@ -302,6 +302,13 @@ sym_status sym_params_set_seed(sym_params *params,
  * (settings unchanged) outside the range.
  */
 sym_status sym_params_set_restarts(sym_params *params, size_t value);
+
+/**
+ * Symmetries whose judge's score is below this fraction of the strongest one's are not
+ * reported, in [0, 1] (default 0.1; 0: every symmetry found, the weak ones included). Returns
+ * `SYM_STATUS_INVALID_ARGUMENT` (settings unchanged) outside the range.
+ */
+sym_status sym_params_set_min_score_ratio(sym_params *params, double value);
 
 /**
  * Good voters: WKS distance below this quantile of sample pairs, in (0, 1] (default 0.2). Returns `SYM_STATUS_INVALID_ARGUMENT` (settings unchanged) outside the range.

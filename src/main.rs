@@ -49,6 +49,9 @@ enum Command {
         /// Further searches from other first samples (seeds seed+1, seed+2, …) while the strongest symmetry found scores below 0.4; their symmetries are pooled (0: one search).
         #[arg(long, default_value_t = 2)]
         restarts: usize,
+        /// Leave out symmetries whose score is below this fraction of the strongest one's, in [0, 1] (0: report every one found).
+        #[arg(long, default_value_t = 0.1, value_parser = fraction)]
+        min_score_ratio: f64,
         /// Good voters: WKS distance below this quantile of all sample pairs.
         #[arg(long, default_value_t = 0.2)]
         wks_quantile: f64,
@@ -169,6 +172,7 @@ fn run(cli: Cli) -> Result<(), intrinsym::Error> {
             samples,
             seed,
             restarts,
+            min_score_ratio,
             wks_quantile,
             eps,
             accept,
@@ -200,6 +204,7 @@ fn run(cli: Cli) -> Result<(), intrinsym::Error> {
             params.samples = samples;
             params.seed = seed;
             params.restarts = restarts;
+            params.min_score_ratio = min_score_ratio;
             params.voting.wks_quantile = wks_quantile;
             params.voting.eps = eps;
             params.maps.accept = accept;
@@ -417,6 +422,15 @@ fn run(cli: Cli) -> Result<(), intrinsym::Error> {
         }
     }
     Ok(())
+}
+
+/// A number in [0, 1] (clap names the option in its error).
+fn fraction(text: &str) -> Result<f64, String> {
+    match text.parse::<f64>() {
+        Ok(x) if (0.0..=1.0).contains(&x) => Ok(x),
+        Ok(x) => Err(format!("{x} is out of range: a number from 0 to 1")),
+        Err(e) => Err(format!("{text:?} is not a number: {e}")),
+    }
 }
 
 /// A finite number ≥ 0 (clap names the option in its error).

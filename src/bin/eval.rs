@@ -64,6 +64,7 @@ fn set_param(p: &mut Params, kv: &str) -> Result<(), String> {
         "wks_quantile" => p.voting.wks_quantile = f()?,
         "max_distortion" => p.max_distortion = f()?,
         "max_candidates" => p.max_candidates = u()?,
+        "min_score_ratio" => p.min_score_ratio = f()?,
         "max_refinements" => p.max_refinements = u()?,
         "patience" => p.patience = u()?,
         "accept" => p.maps.accept = f()?,

@@ -303,6 +303,14 @@ pub extern "C" fn sym_params_set_restarts(params: *mut sym_params, value: usize)
     set(params, "sym_params_set_restarts", "0 to 8", value <= 8, value, |p| p.params.restarts = value)
 }
 
+/// Symmetries whose judge's score is below this fraction of the strongest one's are not
+/// reported, in [0, 1] (default 0.1; 0: every symmetry found, the weak ones included). Returns
+/// `SYM_STATUS_INVALID_ARGUMENT` (settings unchanged) outside the range.
+#[no_mangle]
+pub extern "C" fn sym_params_set_min_score_ratio(params: *mut sym_params, value: f64) -> sym_status {
+    set(params, "sym_params_set_min_score_ratio", "0 to 1", (0.0..=1.0).contains(&value), value, |p| p.params.min_score_ratio = value)
+}
+
 /// Good voters: WKS distance below this quantile of sample pairs, in (0, 1] (default 0.2). Returns `SYM_STATUS_INVALID_ARGUMENT` (settings unchanged) outside the range.
 #[no_mangle]
 pub extern "C" fn sym_params_set_wks_quantile(params: *mut sym_params, value: f64) -> sym_status {
