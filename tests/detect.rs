@@ -750,8 +750,8 @@ fn restarts_report_progress_and_can_be_cancelled() {
 
 /// A symmetry far weaker than the strongest is not reported (`Params::min_score_ratio`): the
 /// report is the full one with exactly the maps scoring below the ratio of the first left out,
-/// in the same order. (A generated blob without symmetry at 642 vertices reports five weak
-/// global maps when nothing is left out, scored 0.10–0.31.)
+/// in the same order. (The generated lopsided blob at 642 vertices reports five maps when
+/// nothing is left out, scored 0.10–0.31.)
 #[test]
 fn weak_symmetries_are_left_out() {
     let c = shapes::lopsided(3);
