@@ -826,10 +826,23 @@ fn pool(pooled: &mut Vec<Found>, new: Vec<Found>, judge: &Judge, emb: &crate::di
     let earlier = pooled.len();
     for mut f in new {
         f.verdict = judge.judge(&f.dense.map, f.distortion, params.max_distortion);
-        match pooled[..earlier].iter().position(|k| k.part == f.part && k.verdict.reverses() == f.verdict.reverses() && agree(&k.dense, &f.dense, probes, emb, tol, 0.5)) {
-            Some(i) if better(&f, &pooled[i]) => pooled[i] = f,
-            Some(_) => {}
-            None => pooled.push(f),
+        keep_better(pooled, earlier, f, |k, f| k.part == f.part && k.verdict.reverses() == f.verdict.reverses() && agree(&k.dense, &f.dense, probes, emb, tol, 0.5));
+    }
+}
+
+/// Adds `f` to `kept`, unless one of the first `within` entries is a version of it (`same`):
+/// that one is replaced by `f` if `f` is the [`better`] version. Returns whether `f` was new.
+fn keep_better(kept: &mut Vec<Found>, within: usize, f: Found, same: impl Fn(&Found, &Found) -> bool) -> bool {
+    match kept[..within].iter().position(|k| same(k, &f)) {
+        Some(i) => {
+            if better(&f, &kept[i]) {
+                kept[i] = f;
+            }
+            false
+        }
+        None => {
+            kept.push(f);
+            true
         }
     }
 }
@@ -848,14 +861,8 @@ fn agree(a: &maps::DenseMap, b: &maps::DenseMap, probes: &[usize], emb: &crate::
 fn once(found: Vec<Found>, same: impl Fn(&maps::DenseMap, &maps::DenseMap) -> bool) -> Vec<Found> {
     let mut kept: Vec<Found> = Vec::with_capacity(found.len());
     for f in found {
-        match kept.iter().position(|k| k.verdict.reverses() == f.verdict.reverses() && same(&k.dense, &f.dense)) {
-            Some(i) => {
-                if better(&f, &kept[i]) {
-                    kept[i] = f;
-                }
-            }
-            None => kept.push(f),
-        }
+        let within = kept.len();
+        keep_better(&mut kept, within, f, |k, f| k.verdict.reverses() == f.verdict.reverses() && same(&k.dense, &f.dense));
     }
     kept
 }
@@ -1132,15 +1139,10 @@ fn search(shared: &Shared<'_>, params: &Params, seed: u64, timings: &mut Timings
         let complexity = characterize::complexity(&maps::functional_map(basis, &dense.map, params.maps.fmap_size), params.complexity_width);
         let verdict = judged.unwrap_or_else(|| verdict(&dense));
         let candidate = Found { dense, part: false, seed, distortion, complexity, verdict };
-        match same_as(&candidate.dense, verdict.reverses(), &found, 0.5) {
-            Some(i) if !better(&candidate, &found[i]) => {}
-            Some(i) => found[i] = candidate,
-            None => {
-                if candidate.dense.refined {
-                    fruitless = 0;
-                }
-                found.push(candidate)
-            }
+        let refined = candidate.dense.refined;
+        let within = found.len();
+        if keep_better(&mut found, within, candidate, |k, f| k.verdict.reverses() == f.verdict.reverses() && agrees(&k.dense, &f.dense, 0.5)) && refined {
+            fruitless = 0;
         }
     }
     timings.maps_refine = t_stage.elapsed().as_secs_f64();
