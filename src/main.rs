@@ -62,7 +62,7 @@ enum Command {
         #[arg(long, default_value_t = 0.03)]
         accept: f64,
         /// Passes of the geodesic polish of every map (0 disables it).
-        #[arg(long, default_value_t = 2)]
+        #[arg(long, default_value_t = 4)]
         polish: usize,
         /// Weight of the polish's extrinsic cue, band-limited mean curvature, which also ranks
         /// the output and drops maps that change it far more than a true symmetry does (≥ 0;

@@ -105,6 +105,15 @@
 //!   reaching far over the body, where the flipped map holds and the right one does not even hold
 //!   at the tip) took the spikes at 10k from 1 to 3 of 6 but the directed quadruped at rest from
 //!   12 to 8 and posed with noise from 8 to 6 (two seeds).
+//! - **The generated limbs are starved of vertices** (session 22): grown from an icosphere cap,
+//!   a leg of the directed quadruped has 56 vertices at 2.5k (edges 0.21 long against the
+//!   body's 0.066; five rings from hip to paw) and 224 at 10k; a spike 33–36 and 138. Measured
+//!   and dropped: evening out the density (the icosphere relaxed coarse to fine, from level 3,
+//!   150 steps per level, by springs pulling with the creature's edge lengths, `w = L_ij /
+//!   |u_j − u_i|`, mirror kept exact): 147 vertices per leg at 2.5k (edges 0.114 against 0.072),
+//!   but piled up at the hips. Ordered pairs found at 2.5k: rest 4 → 10, posed 6 → 5, noisy
+//!   seeds 1/2/3 8/4/6 → 8/8/4; at 10k: rest 12 → 6, posed 10 → 6, noisy 8/8/8 → 4/4/6; spikes
+//!   2 → 2 and 1 → 2 of 6. The stage hangs on the tessellation more than on the density.
 
 use crate::maps::geodesic::EdgeGraph;
 use crate::maps::DenseMap;
