@@ -81,9 +81,9 @@ pub struct MapParams {
     /// disables it; a pass that changes nothing ends it); each pass ends, on a global map, with
     /// one ZoomOut step at `zoomout_k`. Session 22, all of shared/data, seeds 0–3, mean acc@0.05
     /// best / first: two passes 87.2 / 85.0%, three 87.8 / 85.9, four 87.9 / 86.4 (every
-    /// dataset up on both against two), six 88.4 / 86.0 (SHREC'16 first −3.4 against four: a
-    /// wrong reflection of kid05 gains more from the extra passes than its mirror). Time: ×1.12
-    /// on TOSCA, ×1.1–1.3 on the 60k KIDS poses against two passes.
+    /// dataset up on both against two), five 88.2 / 86.1, six 88.4 / 86.0 (SHREC'16 first
+    /// −2.7 and −3.4 against four: a wrong reflection of kid05 gains more from the extra passes
+    /// than its mirror). Time: ×1.12 on TOSCA, ×1.1–1.3 on the 60k KIDS poses against two.
     pub polish: usize,
     /// Anchor candidates of the polish: this many farthest-point samples (default 128, twice
     /// voting's; a superset of them). On posed TOSCA 64 → 128 gave 85.0 → 86.4% mean acc@0.05;
