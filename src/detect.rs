@@ -826,14 +826,15 @@ fn pool(pooled: &mut Vec<Found>, new: Vec<Found>, judge: &Judge, emb: &crate::di
     let earlier = pooled.len();
     for mut f in new {
         f.verdict = judge.judge(&f.dense.map, f.distortion, params.max_distortion);
-        keep_better(pooled, earlier, f, |k, f| k.part == f.part && k.verdict.reverses() == f.verdict.reverses() && agree(&k.dense, &f.dense, probes, emb, tol, 0.5));
+        let known = pooled[..earlier].iter().position(|k| k.part == f.part && k.verdict.reverses() == f.verdict.reverses() && agree(&k.dense, &f.dense, probes, emb, tol, 0.5));
+        keep_better(pooled, known, f);
     }
 }
 
-/// Adds `f` to `kept`, unless one of the first `within` entries is a version of it (`same`):
-/// that one is replaced by `f` if `f` is the [`better`] version. Returns whether `f` was new.
-fn keep_better(kept: &mut Vec<Found>, within: usize, f: Found, same: impl Fn(&Found, &Found) -> bool) -> bool {
-    match kept[..within].iter().position(|k| same(k, &f)) {
+/// Adds `f` to `kept`, unless it is a version of the entry `known`: that one is replaced by `f`
+/// if `f` is the [`better`] version. Returns whether `f` was new.
+fn keep_better(kept: &mut Vec<Found>, known: Option<usize>, f: Found) -> bool {
+    match known {
         Some(i) => {
             if better(&f, &kept[i]) {
                 kept[i] = f;
@@ -861,8 +862,8 @@ fn agree(a: &maps::DenseMap, b: &maps::DenseMap, probes: &[usize], emb: &crate::
 fn once(found: Vec<Found>, same: impl Fn(&maps::DenseMap, &maps::DenseMap) -> bool) -> Vec<Found> {
     let mut kept: Vec<Found> = Vec::with_capacity(found.len());
     for f in found {
-        let within = kept.len();
-        keep_better(&mut kept, within, f, |k, f| k.verdict.reverses() == f.verdict.reverses() && same(&k.dense, &f.dense));
+        let known = kept.iter().position(|k| k.verdict.reverses() == f.verdict.reverses() && same(&k.dense, &f.dense));
+        keep_better(&mut kept, known, f);
     }
     kept
 }
@@ -1140,8 +1141,8 @@ fn search(shared: &Shared<'_>, params: &Params, seed: u64, timings: &mut Timings
         let verdict = judged.unwrap_or_else(|| verdict(&dense));
         let candidate = Found { dense, part: false, seed, distortion, complexity, verdict };
         let refined = candidate.dense.refined;
-        let within = found.len();
-        if keep_better(&mut found, within, candidate, |k, f| k.verdict.reverses() == f.verdict.reverses() && agrees(&k.dense, &f.dense, 0.5)) && refined {
+        let known = same_as(&candidate.dense, verdict.reverses(), &found, 0.5);
+        if keep_better(&mut found, known, candidate) && refined {
             fruitless = 0;
         }
     }
