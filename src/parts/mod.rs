@@ -114,6 +114,18 @@
 //!   but piled up at the hips. Ordered pairs found at 2.5k: rest 4 → 10, posed 6 → 5, noisy
 //!   seeds 1/2/3 8/4/6 → 8/8/4; at 10k: rest 12 → 6, posed 10 → 6, noisy 8/8/8 → 4/4/6; spikes
 //!   2 → 2 and 1 → 2 of 6. The stage hangs on the tessellation more than on the density.
+//! - **Evenly remeshed creatures** (session 23): grown at icosphere level 6 or 7 and simplified
+//!   to 2,562 or 10,242 vertices by the hierarchy's quadric-error simplification (subset
+//!   placement, so rest positions, limbs and truths carry over), noise added after. Ordered
+//!   pairs, rest / posed / posed with 0.5% noise (seed 3): 2.5k from level 6: 11 / 4 / 6, from
+//!   level 7: 6 / 10 / 8 (grown at 2.5k: 4 / 6 / 6); 10k from level 7: 4 / 4 / 6 (grown: 12 /
+//!   10 / 8); spikes from level 7, clean / noisy: 2 / 2 at 2.5k, 4 / 2 at 10k. Not kept: the
+//!   stage's count moves with the tessellation either way. The legs are also barely directed
+//!   at these sizes: the mean nearest-point distance between a rest leg and its front↔back
+//!   mirror is 0.072 (level 4) and 0.044 (level 5) against 0.063 and 0.039 for its left–right
+//!   mirror, which the leg has by construction (the discretisation's floor), with edges of 0.21
+//!   and 0.11 on a leg of length 1; a knee of 1.0 rad instead of 0.6 gives 0.079 / 0.065 and
+//!   0.062 / 0.039. The front↔hind truth is a few hundredths of an edge from the flipped map.
 
 use crate::maps::geodesic::EdgeGraph;
 use crate::maps::DenseMap;
