@@ -84,6 +84,7 @@ fn set_param(p: &mut Params, kv: &str) -> Result<(), String> {
         "stencil" => p.judge.stencil = f()?,
         "max_fixed" => p.max_fixed = f()?,
         "max_curvature_change" => p.max_curvature_change = f()?,
+        "max_fixed_preserving" => p.max_fixed_preserving = f()?,
         "fmap_k" => p.maps.orientation.k = u()?,
         "fmap_descriptors" => p.maps.orientation.descriptors = u()?,
         _ => return Err(format!("unknown parameter {key}")),
