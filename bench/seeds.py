@@ -13,6 +13,11 @@ measured at one seed moves within that noise. Compare changes on the mean over s
     python3 bench/seeds.py summary OUTDIR
     python3 bench/seeds.py compare BEFORE_DIR AFTER_DIR [--min 0.2]
 
+With restarts (two by default) the detection from seed S may also search from seeds S+1 and
+S+2, so neighbouring seeds share draws: check a change on seeds that are apart too
+(`--seeds 10,20`; session 23's four restarts gained at seeds 0–3 and lost at 10 and 20), or
+on one search each (`--set restarts=0`).
+
 `run` writes OUTDIR/seedS.tsv and OUTDIR/seedS.sym.tsv (the eval's tables) and prints the
 summary; `compare` applies the keep rule (overall mean up, no dataset's mean down by more than
 half a point) to the means over the seeds both runs have, for best and for first.

@@ -298,7 +298,7 @@ sym_status sym_params_set_seed(sym_params *params,
 /**
  * Further searches from other first samples (seeds `seed + 1`, `seed + 2`, …) while the
  * strongest symmetry found scores below 0.4; their symmetries are pooled and the judge picks.
- * 0 to 8 (default 4; 0: one search, fastest). Returns `SYM_STATUS_INVALID_ARGUMENT`
+ * 0 to 8 (default 2; 0: one search, fastest). Returns `SYM_STATUS_INVALID_ARGUMENT`
  * (settings unchanged) outside the range.
  */
 sym_status sym_params_set_restarts(sym_params *params, size_t value);

@@ -47,7 +47,7 @@ enum Command {
         #[arg(long, default_value_t = 0)]
         seed: u64,
         /// Further searches from other first samples (seeds seed+1, seed+2, …) while the strongest symmetry found scores below 0.4; their symmetries are pooled (0: one search).
-        #[arg(long, default_value_t = 4)]
+        #[arg(long, default_value_t = 2)]
         restarts: usize,
         /// Leave out symmetries whose score is below this fraction of the strongest one's, in [0, 1] (0: report every one found).
         #[arg(long, default_value_t = 0.1, value_parser = fraction)]

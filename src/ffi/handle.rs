@@ -296,7 +296,7 @@ pub extern "C" fn sym_params_set_seed(params: *mut sym_params, value: u64) -> sy
 
 /// Further searches from other first samples (seeds `seed + 1`, `seed + 2`, …) while the
 /// strongest symmetry found scores below 0.4; their symmetries are pooled and the judge picks.
-/// 0 to 8 (default 4; 0: one search, fastest). Returns `SYM_STATUS_INVALID_ARGUMENT`
+/// 0 to 8 (default 2; 0: one search, fastest). Returns `SYM_STATUS_INVALID_ARGUMENT`
 /// (settings unchanged) outside the range.
 #[no_mangle]
 pub extern "C" fn sym_params_set_restarts(params: *mut sym_params, value: usize) -> sym_status {
