@@ -15,8 +15,8 @@
 //! symmetry when they agree on ≥ 50% of the samples (80% after the polish, which can bring
 //! two versions together) *and* have the same orientation type (a reflection and a rotation
 //! never are), and the version the judge scores higher is kept; symmetries are reported by
-//! decreasing score, and a map of order 1 (it brings 80% of the probes back to themselves: the identity)
-//! is not reported. Complexity is the paper's characterisation (the symmetry line), not a
+//! decreasing score, and a map of order 1 (it brings 80% of the probes back to themselves: the
+//! identity) is not reported. Complexity is the paper's characterisation (the symmetry line), not a
 //! selector. Finally the set is closed under composition: the composition of two global
 //! symmetries that is not the identity, preserves distances and is new is reported too. A
 //! shape with a continuous family of isometries (a sphere, a surface of revolution;
@@ -126,14 +126,15 @@ pub struct Params {
     /// isolated fixed points: a turn by θ keeps within the judge's `fixed_radius` (0.03·√area)
     /// only the points within `0.015·√area / sin(θ/2)` of them, under 1% of the surface for
     /// any turn of 60° or more, a few per cent for 30°. A rotation fixing more is partly the
-    /// identity. (Reflections are not limited here:
-    /// their fixed band flips its stencils, and a mixture of types, such as a half-identity
-    /// that is partly the right mirror, is the score's business: TOSCA dog10's best map flips
-    /// a fifth of its stencils and fixes 0.74.) On a generated shape with no symmetry, five
-    /// searches (`restarts` = 4) found rotations fixing 0.25 and 0.26 of it, flipping 5–6% of
-    /// the stencils (`a_shape_without_symmetry_gets_no_global_symmetry` failed); over
-    /// shared/data (seeds 0–3, two and four restarts) the limit removes 0–3 wrong maps per
-    /// seed and changes no best or first symmetry.
+    /// identity. (Reflections are not limited here: their fixed band flips its stencils, and a
+    /// mixture of types, such as a half-identity that is partly the right mirror, is the
+    /// score's business: TOSCA dog10's best map flips a fifth of its stencils and fixes 0.74.)
+    /// On a generated shape with no symmetry, five searches (`restarts` = 4) found rotations
+    /// fixing 0.25 and 0.26 of it, flipping 5–6% of the stencils
+    /// (`a_shape_without_symmetry_gets_no_global_symmetry` failed), and with the default two
+    /// the 642-vertex blob's strongest map (score 0.31) is such a rotation; over shared/data
+    /// (seeds 0–3, two and four restarts) the limit removes 0–3 wrong maps per seed and changes
+    /// no best or first symmetry.
     pub max_fixed_preserving: f64,
     /// At most this many voting candidates get a dense map (default 8), largest first. The
     /// rest of a symmetry group comes from composition (a 10k-vertex star's 19 symmetries from

@@ -496,7 +496,7 @@ impl Mesh {
     pub fn adjacency(&self) -> (Vec<usize>, Vec<u32>) {
         let n = self.num_vertices();
         // Each triangle gives each of its vertices two neighbours (with repeats across faces).
-        let start = corner_offsets(&self.triangles, n, 2);
+        let start = bucket_offsets(n, self.triangles.iter().flatten().flat_map(|&a| [a as usize; 2]));
         let mut fill = start.clone();
         let mut all = vec![0u32; start[n]];
         for t in &self.triangles {
@@ -588,7 +588,7 @@ impl Mesh {
     /// case, checked in linear time: on 10⁶ vertices the propagation took seconds).
     fn consistently_oriented(&self) -> bool {
         let n = self.vertices.len();
-        let off = corner_offsets(&self.triangles, n, 1);
+        let off = bucket_offsets(n, self.triangles.iter().flatten().map(|&a| a as usize));
         let mut fill = off.clone();
         let mut heads = vec![0u32; off[n]];
         for t in &self.triangles {
@@ -796,14 +796,12 @@ fn longest_edge_sq(v: &[[f64; 3]], t: &[u32; 3]) -> f64 {
     norm_sq(sub(a, b)).max(norm_sq(sub(b, c))).max(norm_sq(sub(c, a)))
 }
 
-/// CSR offsets for `per` entries at every corner of every triangle, bucketed by the corner's
-/// vertex (`n` vertices): vertex `v`'s entries go to `off[v]..off[v + 1]`.
-fn corner_offsets(triangles: &[[u32; 3]], n: usize, per: usize) -> Vec<usize> {
+/// CSR offsets of a counting sort: one entry per item of `buckets` (each in `0..n`), bucket
+/// `v`'s entries at `off[v]..off[v + 1]`.
+fn bucket_offsets(n: usize, buckets: impl Iterator<Item = usize>) -> Vec<usize> {
     let mut off = vec![0usize; n + 1];
-    for t in triangles {
-        for &a in t {
-            off[a as usize + 1] += per;
-        }
+    for b in buckets {
+        off[b + 1] += 1;
     }
     for v in 0..n {
         off[v + 1] += off[v];
@@ -826,15 +824,7 @@ fn edge_key(a: u32, b: u32) -> u64 {
 /// three times).
 pub(crate) fn sorted_edge_keys(triangles: &[[u32; 3]]) -> Vec<u64> {
     let n = triangles.iter().flatten().max().map_or(0, |&v| v as usize + 1);
-    let mut start = vec![0usize; n + 1];
-    for t in triangles {
-        for k in 0..3 {
-            start[t[k].min(t[(k + 1) % 3]) as usize + 1] += 1;
-        }
-    }
-    for v in 0..n {
-        start[v + 1] += start[v];
-    }
+    let start = bucket_offsets(n, triangles.iter().flat_map(|t| (0..3).map(move |k| t[k].min(t[(k + 1) % 3]) as usize)));
     let mut fill = start[..n].to_vec();
     let mut keys = vec![0u64; 3 * triangles.len()];
     for t in triangles {
