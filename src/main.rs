@@ -64,6 +64,10 @@ enum Command {
         /// Passes of the geodesic polish of every map (0 disables it).
         #[arg(long, default_value_t = 4)]
         polish: usize,
+        /// Further passes of the polish for each search's strongest symmetry, after the
+        /// others are ranked (0: none).
+        #[arg(long, default_value_t = 4)]
+        final_polish: usize,
         /// Weight of the polish's extrinsic cue, band-limited mean curvature, which also ranks
         /// the output and drops maps that change it far more than a true symmetry does (≥ 0;
         /// 0: purely intrinsic maps and ranking, e.g. for a shape that bends without stretching
@@ -177,6 +181,7 @@ fn run(cli: Cli) -> Result<(), intrinsym::Error> {
             eps,
             accept,
             polish,
+            final_polish,
             curvature_weight,
             proxy_vertices,
             hierarchy_vertices,
@@ -209,6 +214,7 @@ fn run(cli: Cli) -> Result<(), intrinsym::Error> {
             params.voting.eps = eps;
             params.maps.accept = accept;
             params.maps.polish = polish;
+            params.maps.final_polish = final_polish;
             params.maps.curvature_weight = curvature_weight;
             params.maps.proxy_vertices = proxy_vertices;
             params.hierarchy_vertices = hierarchy_vertices;

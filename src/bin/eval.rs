@@ -72,6 +72,7 @@ fn set_param(p: &mut Params, kv: &str) -> Result<(), String> {
         "zoomout_step" => p.maps.zoomout_step = u()?,
         "spectral_start" => p.maps.spectral_start = u()?,
         "polish" => p.maps.polish = u()?,
+        "final_polish" => p.maps.final_polish = u()?,
         "polish_samples" => p.maps.polish_samples = u()?,
         "curvature_weight" => p.maps.curvature_weight = f()?,
         "curvature_time" => p.maps.curvature_time = f()?,

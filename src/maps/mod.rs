@@ -85,6 +85,10 @@ pub struct MapParams {
     /// −2.7 and −3.4 against four: a wrong reflection of kid05 gains more from the extra passes
     /// than its mirror). Time: ×1.12 on TOSCA, ×1.1–1.3 on the 60k KIDS poses against two.
     pub polish: usize,
+    /// Further passes of the polish given to each search's strongest symmetry once the search
+    /// has ranked its maps (default 4; the `polish` passes of every map come first). See
+    /// [`crate::detect`], "Further polish of the strongest symmetry".
+    pub final_polish: usize,
     /// Anchor candidates of the polish: this many farthest-point samples (default 128, twice
     /// voting's; a superset of them). On posed TOSCA 64 → 128 gave 85.0 → 86.4% mean acc@0.05;
     /// 192 gave 86.5%.
@@ -106,7 +110,7 @@ pub struct MapParams {
 
 impl Default for MapParams {
     fn default() -> Self {
-        MapParams { accept: 0.03, refine: 3, fmap_size: 20, search_vertices: 1000, local_anchors: 16, wks_accept: 0.2, zoomout_fraction: 0.6, zoomout_k: 100, spectral_start: 12, zoomout_step: 5, global_fraction: 0.75, polish: 4, polish_samples: 128, curvature_weight: 0.03, curvature_time: 1e-3, proxy_vertices: 6000, orientation: Default::default() }
+        MapParams { accept: 0.03, refine: 3, fmap_size: 20, search_vertices: 1000, local_anchors: 16, wks_accept: 0.2, zoomout_fraction: 0.6, zoomout_k: 100, spectral_start: 12, zoomout_step: 5, global_fraction: 0.75, polish: 4, final_polish: 4, polish_samples: 128, curvature_weight: 0.03, curvature_time: 1e-3, proxy_vertices: 6000, orientation: Default::default() }
     }
 }
 

@@ -2,7 +2,7 @@
 //!
 //! ```text
 //! { "vertices": n, "faces": m,
-//!   "params": { "eigenpairs", "samples", "seed", "restarts", "min_score_ratio", "wks_quantile", "eps", "accept", "polish", "proxy_vertices", "hierarchy_vertices", "groups", "parts" },
+//!   "params": { "eigenpairs", "samples", "seed", "restarts", "min_score_ratio", "wks_quantile", "eps", "accept", "polish", "final_polish", "proxy_vertices", "hierarchy_vertices", "groups", "parts" },
 //!   "timings": { "spectral", "descriptors", "distance", "sampling", "voting", "maps",
 //!                "maps_proxy", "maps_profile", "maps_fmap", "maps_refine", "maps_polish", "maps_compose", "maps_lift", "parts",
 //!                "congruence", "hierarchy", "lift", "characterize", "cluster", "total" },   // seconds
@@ -86,6 +86,7 @@ pub fn to_json(det: &Detection, params: &Params) -> Value {
             "eps": params.voting.eps,
             "accept": params.maps.accept,
             "polish": params.maps.polish,
+            "final_polish": params.maps.final_polish,
             "proxy_vertices": params.maps.proxy_vertices,
             "hierarchy_vertices": params.hierarchy_vertices,
             "groups": params.groups,
