@@ -1225,6 +1225,14 @@ fn search(shared: &Shared<'_>, params: &Params, seed: u64, timings: &mut Timings
         g.pin(&polish_anchors);
         g
     });
+    // A polished map replaces a symmetry's map: its distortion (`distortion`, on the samples),
+    // its functional map's complexity and its verdict follow it.
+    let replace_map = |f: &mut Found, dense: maps::DenseMap, distortion: f64| {
+        f.distortion = distortion;
+        f.complexity = characterize::complexity(&maps::functional_map(basis, &dense.map, params.maps.fmap_size), params.complexity_width);
+        f.verdict = verdict(&dense);
+        f.dense = dense;
+    };
     if let (true, Some(geodesics)) = (params.maps.polish > 0, &geodesics) {
         let anchors = &polish_anchors;
         // Maps are polished independently, on all cores (the result does not depend on it), in
@@ -1251,11 +1259,7 @@ fn search(shared: &Shared<'_>, params: &Params, seed: u64, timings: &mut Timings
                 if !f.dense.global && dense.global && distortion > params.max_distortion {
                     continue;
                 }
-                f.dense = dense;
-                // The map changed: so did its distortion and its functional map.
-                f.distortion = distortion;
-                f.complexity = characterize::complexity(&maps::functional_map(basis, &f.dense.map, params.maps.fmap_size), params.complexity_width);
-                f.verdict = verdict(&f.dense);
+                replace_map(f, dense, distortion);
             }
         }
     }
@@ -1326,15 +1330,13 @@ fn search(shared: &Shared<'_>, params: &Params, seed: u64, timings: &mut Timings
     if !progress(0.955) {
         return Err(cancelled("polish"));
     }
-    if let (true, Some(geodesics)) = (params.maps.polish > 0, &geodesics) {
+    if let (true, Some(geodesics)) = (params.maps.polish > 0 && params.maps.final_polish > 0, &geodesics) {
         if let Some(i) = strongest_index(&found, params) {
             let f = &mut found[i];
             let dense = further_polish(&ctx, geodesics, &f.dense, &polish_anchors, params.maps.final_polish, &params.maps);
             if dense.map != f.dense.map {
-                f.distortion = characterize::sample_distortion(&dense.map, probes, emb, vinfo.diameter);
-                f.complexity = characterize::complexity(&maps::functional_map(basis, &dense.map, params.maps.fmap_size), params.complexity_width);
-                f.verdict = verdict(&dense);
-                f.dense = dense;
+                let distortion = characterize::sample_distortion(&dense.map, probes, emb, vinfo.diameter);
+                replace_map(f, dense, distortion);
             }
         }
     }

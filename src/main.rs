@@ -65,7 +65,7 @@ enum Command {
         #[arg(long, default_value_t = 4)]
         polish: usize,
         /// Further passes of the polish for each search's strongest symmetry, after the
-        /// others are ranked (0: none).
+        /// others are ranked (0: none; none either with --polish 0).
         #[arg(long, default_value_t = 4)]
         final_polish: usize,
         /// Weight of the polish's extrinsic cue, band-limited mean curvature, which also ranks

@@ -86,7 +86,8 @@ pub struct MapParams {
     /// than its mirror). Time: ×1.12 on TOSCA, ×1.1–1.3 on the 60k KIDS poses against two.
     pub polish: usize,
     /// Further passes of the polish given to each search's strongest symmetry once the search
-    /// has ranked its maps (default 4; the `polish` passes of every map come first). See
+    /// has ranked its maps (default 4; the `polish` passes of every map come first, and with
+    /// `polish` = 0 there are none of either). See
     /// [`crate::detect`], "Further polish of the strongest symmetry".
     pub final_polish: usize,
     /// Anchor candidates of the polish: this many farthest-point samples (default 128, twice
