@@ -943,17 +943,9 @@ fn strongest_index(found: &[Found], params: &Params) -> Option<usize> {
     found.iter().position(|f| eligible(f) && f.verdict.score == top)
 }
 
-/// `passes` passes of the geodesic polish ([`maps::geodesic`]) of `dense`; a pass that changes
-/// nothing ends it (the next would not either).
+/// `passes` passes of the geodesic polish of `dense` ([`maps::geodesic::polish_passes`]).
 fn further_polish(ctx: &Context<'_>, geodesics: &maps::geodesic::Geodesics, dense: &maps::DenseMap, anchors: &[usize], passes: usize, params: &MapParams) -> maps::DenseMap {
-    let mut dense = dense.clone();
-    for _ in 0..passes {
-        match maps::geodesic::try_polish(ctx, geodesics, &dense, anchors, params) {
-            Some(polished) => dense = polished,
-            None => break,
-        }
-    }
-    dense
+    maps::geodesic::polish_passes(ctx, geodesics, dense, anchors, passes, params).0
 }
 
 /// What every search of [`pipeline`] shares: the mesh and its spectral quantities, which do

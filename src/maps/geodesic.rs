@@ -403,6 +403,46 @@ pub fn polish(ctx: &Context<'_>, geodesics: &Geodesics, m: &DenseMap, samples: &
     try_polish(ctx, geodesics, m, samples, params).unwrap_or_else(|| m.clone())
 }
 
+/// `passes` passes of [`polish`], and the number of passes run.
+///
+/// A pass is a function of its input's map, images, confidences and globality alone
+/// ([`same_state`]), so once a pass returns the state it was given (a fixed point) or the state
+/// of two passes back (a cycle of two: passes alternate between two maps), every later pass is
+/// known without running it: the result is the one all `passes` would give, to the bit. A pass
+/// that leaves the map unchanged for want of consistent pairs ([`try_polish`]) ends them too.
+/// Measured on TOSCA's 47 shapes (seed 0, sixteen passes of each search's strongest map):
+/// 41 of 58 reach a fixed point or a cycle, after 1–13 passes; within the four passes every map
+/// gets first, 1 of 231 does. KIDS pose 1's strongest map is a fixed point before its further
+/// passes.
+pub fn polish_passes(ctx: &Context<'_>, geodesics: &Geodesics, m: &DenseMap, samples: &[usize], passes: usize, params: &MapParams) -> (DenseMap, usize) {
+    // The last two results, newest first: `previous[0]` after pass `done`.
+    let mut previous: Vec<DenseMap> = vec![m.clone()];
+    for done in 1..=passes {
+        let Some(polished) = try_polish(ctx, geodesics, &previous[0], samples, params) else {
+            return (previous.swap_remove(0), done);
+        };
+        if same_state(&polished, &previous[0]) {
+            // A fixed point: every later pass returns it too.
+            return (polished, done);
+        }
+        if previous.len() == 2 && same_state(&polished, &previous[1]) {
+            // A cycle: pass `done + j` returns `polished` for even `j`, the other map for odd.
+            let map = if (passes - done) % 2 == 0 { polished } else { previous.swap_remove(0) };
+            return (map, done);
+        }
+        previous.insert(0, polished);
+        previous.truncate(2);
+    }
+    (previous.swap_remove(0), passes)
+}
+
+/// Whether two maps are the same input to a polish pass (what [`try_polish`] reads: the map,
+/// every vertex's image, the confidences it keeps where its search does not reach, and whether
+/// the map is global and refined).
+fn same_state(a: &DenseMap, b: &DenseMap) -> bool {
+    a.global == b.global && a.refined == b.refined && a.map == b.map && a.image == b.image && a.confidence == b.confidence
+}
+
 /// [`polish`], or `None` when it leaves the map unchanged (fewer than 3 consistent sample
 /// pairs): polishing again would change nothing either (a partial map's pairs are rarely
 /// consistent with most others; on TOSCA's dog1 five of six maps).
@@ -758,5 +798,35 @@ mod tests {
         assert!(judged > 0.85, "the hind half after the polish: {judged}");
         let whole = crate::eval::accuracy(&c.mesh, &repaired.map, &truth, &[0.05])[0];
         assert!(whole > 0.9, "whole map after the polish: {whole}");
+    }
+
+    /// Many passes at once are the passes one by one, to the bit, with fewer run once the maps
+    /// reach a fixed point or a cycle of two: from a map wrong on one leg (which the first
+    /// passes repair), on a noisy rest quadruped.
+    #[test]
+    fn polish_passes_are_the_passes_one_by_one() {
+        let c = shapes::quadruped(4, Pose::Rest, 0.002, 3);
+        let n = c.mesh.num_vertices();
+        let (emb, desc, samples, diameter) = spectra_and_samples(&c.mesh, 64);
+        let params = MapParams::default();
+        let ctx = Context::new(&c.mesh, &emb, &desc, diameter, &params);
+        let image: Vec<usize> = (0..n).map(|v| if c.limb[v] == 0 { v } else { c.mirror[v] as usize }).collect();
+        let wrong = DenseMap::from_image(image);
+        let geodesics = Geodesics::new(&ctx);
+        let mut one_by_one = vec![wrong.clone()];
+        for _ in 0..12 {
+            let next = polish(&ctx, &geodesics, one_by_one.last().unwrap(), &samples, &params);
+            one_by_one.push(next);
+        }
+        let mut shortcut = false;
+        for passes in 0..=12 {
+            let (m, run) = polish_passes(&ctx, &geodesics, &wrong, &samples, passes, &params);
+            let want = &one_by_one[passes];
+            assert!(run <= passes);
+            assert!(m.map == want.map && m.image == want.image && m.confidence == want.confidence && m.mismatch == want.mismatch, "{passes} passes");
+            assert_eq!((m.global, m.region_size, &m.anchors), (want.global, want.region_size, &want.anchors));
+            shortcut |= run < passes;
+        }
+        assert!(shortcut, "twelve passes reach a fixed point or a cycle of two");
     }
 }
