@@ -66,7 +66,7 @@ enum Command {
         polish: usize,
         /// Further passes of the polish for each search's strongest symmetry, after the
         /// others are ranked (0: none; none either with --polish 0).
-        #[arg(long, default_value_t = 4)]
+        #[arg(long, default_value_t = 8)]
         final_polish: usize,
         /// Weight of the polish's extrinsic cue, band-limited mean curvature, which also ranks
         /// the output and drops maps that change it far more than a true symmetry does (≥ 0;

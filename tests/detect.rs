@@ -776,9 +776,9 @@ fn weak_symmetries_are_left_out() {
 /// The further polish (`MapParams::final_polish`) spends its passes on each search's strongest
 /// symmetry only: with one search, every other reported map is the one reported without it,
 /// the strongest map keeps its type and changes (the passes ran), and it stays as accurate
-/// (posed quadrupeds with 0.5% noise, four noise seeds: acc@0.05 0.958–0.983 with the four
-/// further passes, 0.963–0.984 without, a change of −0.005 to +0.002 on these generated
-/// mirrors; on the shared meshes they gain, docs/accuracy.md "Session 24").
+/// (posed quadrupeds with 0.5% noise, four noise seeds: acc@0.05 0.957–0.984 with the eight
+/// further passes, 0.963–0.984 without, a change of −0.005 to +0.007 on these generated
+/// mirrors; on the shared meshes they gain, docs/accuracy.md "Sessions 24 and 25").
 #[test]
 fn further_polish_refines_only_the_strongest_symmetry() {
     let mut changed = 0;
