@@ -729,19 +729,26 @@ mod tests {
         (emb, desc, samples, diameter)
     }
 
+    /// The noisy rest quadruped of the polish tests, its spectra and 64 samples
+    /// ([`spectra_and_samples`]), and a map that is its mirror except on leg 0, which it maps to
+    /// itself.
+    fn wrong_leg() -> (shapes::Creature, (crate::distance::BiharmonicEmbedding, faer::Mat<f64>, Vec<usize>, f64), DenseMap) {
+        let c = shapes::quadruped(4, Pose::Rest, 0.002, 3);
+        let spectra = spectra_and_samples(&c.mesh, 64);
+        let image: Vec<usize> = (0..c.mesh.num_vertices()).map(|v| if c.limb[v] == 0 { v } else { c.mirror[v] as usize }).collect();
+        (c, spectra, DenseMap::from_image(image))
+    }
+
     /// A map that is right except on one leg, which it maps to itself, is repaired: the leg's
     /// samples disagree with the rest and are matched again, and the dense pass follows them.
     /// (On the rest pose with noise: the posed quadruped's legs are bent by skinning, which
     /// changes their geodesics by up to 5% of the diameter, as much as the test's error.)
     #[test]
     fn polish_repairs_a_wrongly_mapped_leg() {
-        let c = shapes::quadruped(4, Pose::Rest, 0.002, 3);
+        let (c, (emb, desc, samples, diameter), wrong) = wrong_leg();
         let n = c.mesh.num_vertices();
-        let (emb, desc, samples, diameter) = spectra_and_samples(&c.mesh, 64);
         let params = MapParams::default();
         let ctx = Context::new(&c.mesh, &emb, &desc, diameter, &params);
-        let image: Vec<usize> = (0..n).map(|v| if c.limb[v] == 0 { v } else { c.mirror[v] as usize }).collect();
-        let wrong = DenseMap::from_image(image);
         let truth: Vec<(usize, Vec<usize>)> = (0..n).map(|v| (v, vec![c.mirror[v] as usize])).collect();
         let leg: Vec<(usize, Vec<usize>)> = truth.iter().filter(|t| c.limb[t.0] == 0).cloned().collect();
         let before = crate::eval::accuracy(&c.mesh, &wrong.map, &leg, &[0.05])[0];
@@ -805,13 +812,9 @@ mod tests {
     /// passes repair), on a noisy rest quadruped.
     #[test]
     fn polish_passes_are_the_passes_one_by_one() {
-        let c = shapes::quadruped(4, Pose::Rest, 0.002, 3);
-        let n = c.mesh.num_vertices();
-        let (emb, desc, samples, diameter) = spectra_and_samples(&c.mesh, 64);
+        let (c, (emb, desc, samples, diameter), wrong) = wrong_leg();
         let params = MapParams::default();
         let ctx = Context::new(&c.mesh, &emb, &desc, diameter, &params);
-        let image: Vec<usize> = (0..n).map(|v| if c.limb[v] == 0 { v } else { c.mirror[v] as usize }).collect();
-        let wrong = DenseMap::from_image(image);
         let geodesics = Geodesics::new(&ctx);
         let mut one_by_one = vec![wrong.clone()];
         for _ in 0..12 {
