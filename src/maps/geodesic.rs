@@ -720,9 +720,12 @@ mod tests {
         assert_eq!(calls, 1);
     }
 
+    /// A test mesh's biharmonic embedding, signatures, samples and their biharmonic diameter.
+    type Spectra = (crate::distance::BiharmonicEmbedding, faer::Mat<f64>, Vec<usize>, f64);
+
     /// The embedding and signatures of `mesh` (default eigenpairs), `count` farthest-point
     /// samples and their biharmonic diameter: the polish tests' setting.
-    fn spectra_and_samples(mesh: &crate::Mesh, count: usize) -> (crate::distance::BiharmonicEmbedding, faer::Mat<f64>, Vec<usize>, f64) {
+    fn spectra_and_samples(mesh: &crate::Mesh, count: usize) -> Spectra {
         let (_basis, emb, desc) = test_spectra(mesh, crate::spectral::EigenParams::default().k);
         let samples = farthest_point(&emb, count, 0).vertices;
         let diameter = emb.diameter_of(&samples);
@@ -732,7 +735,7 @@ mod tests {
     /// The noisy rest quadruped of the polish tests, its spectra and 64 samples
     /// ([`spectra_and_samples`]), and a map that is its mirror except on leg 0, which it maps to
     /// itself.
-    fn wrong_leg() -> (shapes::Creature, (crate::distance::BiharmonicEmbedding, faer::Mat<f64>, Vec<usize>, f64), DenseMap) {
+    fn wrong_leg() -> (shapes::Creature, Spectra, DenseMap) {
         let c = shapes::quadruped(4, Pose::Rest, 0.002, 3);
         let spectra = spectra_and_samples(&c.mesh, 64);
         let image: Vec<usize> = (0..c.mesh.num_vertices()).map(|v| if c.limb[v] == 0 { v } else { c.mirror[v] as usize }).collect();
