@@ -946,11 +946,6 @@ fn strongest_index(found: &[Found], params: &Params) -> Option<usize> {
     found.iter().position(|f| eligible(f) && f.verdict.score == top)
 }
 
-/// `passes` passes of the geodesic polish of `dense` ([`maps::geodesic::polish_passes`]).
-fn further_polish(ctx: &Context<'_>, geodesics: &maps::geodesic::Geodesics, dense: &maps::DenseMap, anchors: &[usize], passes: usize, params: &MapParams) -> maps::DenseMap {
-    maps::geodesic::polish_passes(ctx, geodesics, dense, anchors, passes, params).0
-}
-
 /// What every search of [`pipeline`] shares: the mesh and its spectral quantities, which do
 /// not depend on the samples.
 struct Shared<'a> {
@@ -1239,7 +1234,7 @@ fn search(shared: &Shared<'_>, params: &Params, seed: u64, timings: &mut Timings
                 return Err(cancelled("polish"));
             }
             let polished = crate::parallel::map(round, |f: &Found| {
-                further_polish(&ctx, geodesics, &f.dense, anchors, params.maps.polish, &params.maps)
+                maps::geodesic::polish_passes(&ctx, geodesics, &f.dense, anchors, params.maps.polish, &params.maps).0
             });
             for (f, dense) in round.iter_mut().zip(polished) {
                 let distortion = characterize::sample_distortion(&dense.map, probes, emb, vinfo.diameter);
@@ -1328,7 +1323,7 @@ fn search(shared: &Shared<'_>, params: &Params, seed: u64, timings: &mut Timings
     if let (true, Some(geodesics)) = (params.maps.polish > 0 && params.maps.final_polish > 0, &geodesics) {
         if let Some(i) = strongest_index(&found, params) {
             let f = &mut found[i];
-            let dense = further_polish(&ctx, geodesics, &f.dense, &polish_anchors, params.maps.final_polish, &params.maps);
+            let (dense, _) = maps::geodesic::polish_passes(&ctx, geodesics, &f.dense, &polish_anchors, params.maps.final_polish, &params.maps);
             if dense.map != f.dense.map {
                 let distortion = characterize::sample_distortion(&dense.map, probes, emb, vinfo.diameter);
                 replace_map(f, dense, distortion);
