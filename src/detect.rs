@@ -80,7 +80,7 @@ use crate::descriptors::{wks, WksParams};
 use crate::distance::biharmonic;
 use crate::error::Error;
 use crate::hierarchy::Hierarchy;
-use crate::judge::{Judge, JudgeParams, Verdict};
+use crate::judge::{Judge, JudgeParams, LowBand, Verdict};
 use crate::maps::{self, proxy::Proxy, Context, MapParams};
 use crate::mesh::Mesh;
 use crate::parts::PartParams;
@@ -574,9 +574,12 @@ fn detect_part(mesh: Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
     }
     let fine = |i: usize| mesh.input_index[h.seeds[to_coarse[i]]] as usize;
     // The judge on the fine mesh (the maps are reported there): ranks the lifted maps, as
-    // `report` ranks a mesh's own.
+    // `report` ranks a mesh's own; curvature and low band are the coarse mesh's, constant on
+    // each cell.
     let fine_curvature = spectral.curvature.as_deref().map(|coarse| h.on_fine(coarse));
-    let judge = Judge::new(&mesh.vertices, normals, &h.fine_adjacency, mesh.area().sqrt(), &params.judge).with_curvature(fine_curvature);
+    let fine_mass = crate::spectral::mass::lumped_mass(&mesh, &crate::spectral::cotan::mollified_edge_lengths(&mesh));
+    let fine_band = LowBand::from_basis(spectral.basis.evecs.as_ref(), &spectral.basis.mass).on_fine(&h.owner, fine_mass);
+    let judge = Judge::new(&mesh.vertices, normals, &h.fine_adjacency, mesh.area().sqrt(), &params.judge).with_curvature(fine_curvature).with_band(Some(fine_band));
     let count = det.symmetries.len();
     for (i, (s, dense)) in det.symmetries.iter_mut().zip(lifted).enumerate() {
         if !progress(0.97 + 0.03 * i as f64 / count as f64) {
@@ -657,7 +660,9 @@ fn several(whole: &Mesh, parts: &[Mesh], params: &Params, progress: &mut dyn FnM
             ranked.push((s.verdict.score * shares[c], s));
         }
     }
-    // The swaps are judged on the whole mesh (its judge built only for them).
+    // The swaps are judged on the whole mesh (its judge built only for them; no band trace:
+    // the components' eigenfunctions are each their own, and a swap moves every point to
+    // another component, so it is not the identity in any band).
     if !swaps.is_empty() {
         let oriented = whole.oriented_triangles();
         let judge = Judge::new(&whole.vertices, whole.vertex_normals(&oriented), &whole.adjacency(), total_area.sqrt(), &params.judge).with_curvature(whole_curvature(whole, parts, &results));
@@ -806,10 +811,11 @@ fn pipeline(mesh: &Mesh, params: &Params, curvature: Option<&[f64]>, progress: &
     let mesh_curvature = band_limited_curvature(curvature, mesh, &normals, basis, &params.maps);
     let adjacency = mesh.adjacency();
     // The judge on the mesh: without the curvature it is the maps stage's when the maps are
-    // made on the mesh itself (every search takes a copy); with it, the final ranking's, which
-    // decides between the searches' symmetries and ranks the report.
+    // made on the mesh itself (every search takes a copy); with it and the low band (the
+    // band trace, `crate::judge`), the final ranking's, which decides between the searches'
+    // symmetries and ranks the report.
     let plain_judge = Judge::new(&mesh.vertices, normals.clone(), &adjacency, scale, &params.judge);
-    let mesh_judge = plain_judge.clone().with_curvature(mesh_curvature.clone());
+    let mesh_judge = plain_judge.clone().with_curvature(mesh_curvature.clone()).with_band(Some(LowBand::from_basis(basis.evecs.as_ref(), &basis.mass)));
     let shared = Shared { mesh, basis, desc: &desc, emb, oriented: &oriented, normals: &normals, curvature: &mesh_curvature, scale, adjacency: &adjacency, judge: &plain_judge };
     // Searches from different first samples until one finds a symmetry the judge trusts
     // (`Params::restarts`); their symmetries are pooled.

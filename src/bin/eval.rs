@@ -128,8 +128,8 @@ fn score_all(mesh: &Mesh, truths: &[(String, Vec<(usize, Vec<usize>)>)], params:
                         let a = eval::accuracy(mesh, &processed(&s.map), truth, &[0.05, 0.10]);
                         let v = &s.verdict;
                         symmetries.push(format!(
-                            "{name}\t{i}\t{:.4}\t{:.4}\t{}\t{}\t{:.4}\t{:.4}\t{:.4}\t{:.5}\t{:.4}\t{:.4}\t{:.4}",
-                            a[0], a[1], s.kind.as_str(), s.order, v.reversal, v.fixed, v.coverage, s.distortion, s.complexity, v.score, v.curvature
+                            "{name}\t{i}\t{:.4}\t{:.4}\t{}\t{}\t{:.4}\t{:.4}\t{:.4}\t{:.5}\t{:.4}\t{:.4}\t{:.4}\t{:.4}",
+                            a[0], a[1], s.kind.as_str(), s.order, v.reversal, v.fixed, v.coverage, s.distortion, s.complexity, v.score, v.curvature, v.band_trace
                         ));
                         scores.push((a[0], v.score));
                         if i == 0 {
@@ -174,7 +174,7 @@ fn truth_line(name: &str, mesh: &Mesh, truth: &[(usize, Vec<usize>)], params: &P
     match eval::judge_maps(mesh, params, &[map]) {
         Ok(v) => {
             let (v, distortion) = &v[0];
-            let line = format!("{name}\ttruth\t{:.4}\t{:.4}\tglobal\t2\t{:.4}\t{:.4}\t{:.4}\t{:.5}\tNaN\t{:.4}\t{:.4}", a[0], a[1], v.reversal, v.fixed, v.coverage, distortion, v.score, v.curvature);
+            let line = format!("{name}\ttruth\t{:.4}\t{:.4}\tglobal\t2\t{:.4}\t{:.4}\t{:.4}\t{:.5}\tNaN\t{:.4}\t{:.4}\t{:.4}", a[0], a[1], v.reversal, v.fixed, v.coverage, distortion, v.score, v.curvature, v.band_trace);
             (line, Some((v.score, v.coverage)))
         }
         Err(e) => {
@@ -473,7 +473,7 @@ fn main() {
         }
     }
     if let Some(path) = symmetries_tsv {
-        let mut out = String::from("shape\tindex\tacc05\tacc10\tkind\torder\treversal\tfixed\tcoverage\tdistortion\tcomplexity\tscore\tcurvature\n");
+        let mut out = String::from("shape\tindex\tacc05\tacc10\tkind\torder\treversal\tfixed\tcoverage\tdistortion\tcomplexity\tscore\tcurvature\tband\n");
         for line in rows.iter().flat_map(|r| &r.symmetries) {
             out += line;
             out.push('\n');

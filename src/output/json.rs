@@ -13,7 +13,7 @@
 //!             "non_manifold_edges", "degenerate_triangles", "welded_vertices", "collapsed_triangles" },
 //!   "symmetries": [ { "id", "kind": "global"|"partial", "group", "order", "complexity",
 //!                     "distortion", "score", "orientation": "reversing"|"preserving",
-//!                     "reversal", "curvature_change", "fixed", "source", "target", "support_pairs": [[a, b], …],
+//!                     "reversal", "curvature_change", "band_trace", "fixed", "source", "target", "support_pairs": [[a, b], …],
 //!                     "region_size", "components": [from, to], "map": [n ints, −1 outside], "confidence": [n floats],
 //!                     "fmap": [k_f² floats, row-major], "fmap_size": k_f } ] }
 //! ```
@@ -44,6 +44,7 @@ pub fn to_json(det: &Detection, params: &Params) -> Value {
                 "orientation": s.verdict.orientation(),
                 "reversal": s.verdict.reversal,
                 "curvature_change": s.verdict.curvature,
+                "band_trace": s.verdict.band_trace,
                 "fixed": s.verdict.fixed,
                 "source": s.source,
                 "target": s.target,
