@@ -810,12 +810,12 @@ fn pipeline(mesh: &Mesh, params: &Params, curvature: Option<&[f64]>, progress: &
     // The polish's curvature term (`crate::descriptors::curvature`).
     let mesh_curvature = band_limited_curvature(curvature, mesh, &normals, basis, &params.maps);
     let adjacency = mesh.adjacency();
-    // The judge on the mesh: without the curvature it is the maps stage's when the maps are
-    // made on the mesh itself (every search takes a copy); with it and the low band (the
-    // band trace, `crate::judge`), the final ranking's, which decides between the searches'
-    // symmetries and ranks the report.
-    let plain_judge = Judge::new(&mesh.vertices, normals.clone(), &adjacency, scale, &params.judge);
-    let mesh_judge = plain_judge.clone().with_curvature(mesh_curvature.clone()).with_band(Some(LowBand::from_basis(basis.evecs.as_ref(), &basis.mass)));
+    // The judge on the mesh: with the low band (the band trace, `crate::judge`) and without
+    // the curvature it is the maps stage's when the maps are made on the mesh itself (every
+    // search takes a copy); with both, the final ranking's, which decides between the
+    // searches' symmetries and ranks the report.
+    let plain_judge = Judge::new(&mesh.vertices, normals.clone(), &adjacency, scale, &params.judge).with_band(Some(LowBand::from_basis(basis.evecs.as_ref(), &basis.mass)));
+    let mesh_judge = plain_judge.clone().with_curvature(mesh_curvature.clone());
     let shared = Shared { mesh, basis, desc: &desc, emb, oriented: &oriented, normals: &normals, curvature: &mesh_curvature, scale, adjacency: &adjacency, judge: &plain_judge };
     // Searches from different first samples until one finds a symmetry the judge trusts
     // (`Params::restarts`); their symmetries are pooled.
@@ -1035,14 +1035,14 @@ fn search(shared: &Shared<'_>, params: &Params, seed: u64, timings: &mut Timings
     };
     ctx.basis = Some(basis);
     // The judge on the maps' domain: the mesh, or the proxy graph with the mesh's normals at
-    // its seeds.
+    // its seeds and its own low band.
     // The polish's curvature term (`crate::descriptors::curvature`), on the maps' domain.
     ctx.curvature = match (&proxy, mesh_curvature) {
         (Some(p), Some(h)) => Some(p.seeds.iter().map(|&s| h[s]).collect()),
         (_, h) => h.clone(),
     };
     let domain_judge = match &proxy {
-        Some(p) => Judge::new(&p.positions, p.seeds.iter().map(|&s| normals[s]).collect(), &p.adjacency, scale, &params.judge),
+        Some(p) => Judge::new(&p.positions, p.seeds.iter().map(|&s| normals[s]).collect(), &p.adjacency, scale, &params.judge).with_band(Some(LowBand::from_basis(p.basis.evecs.as_ref(), &p.basis.mass))),
         None => mesh_judge.clone(),
     };
     ctx.judge = Some((domain_judge, probes.to_vec(), params.max_distortion));
