@@ -578,7 +578,7 @@ fn detect_part(mesh: Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
     // each cell.
     let fine_curvature = spectral.curvature.as_deref().map(|coarse| h.on_fine(coarse));
     let fine_mass = crate::spectral::mass::lumped_mass(&mesh, &crate::spectral::cotan::mollified_edge_lengths(&mesh));
-    let fine_band = LowBand::from_basis(spectral.basis.evecs.as_ref(), &spectral.basis.mass).on_fine(&h.owner, fine_mass);
+    let fine_band = LowBand::from_basis(&spectral.basis).on_fine(&h.owner, fine_mass);
     let judge = Judge::new(&mesh.vertices, normals, &h.fine_adjacency, mesh.area().sqrt(), &params.judge).with_curvature(fine_curvature).with_band(Some(fine_band));
     let count = det.symmetries.len();
     for (i, (s, dense)) in det.symmetries.iter_mut().zip(lifted).enumerate() {
@@ -814,7 +814,7 @@ fn pipeline(mesh: &Mesh, params: &Params, curvature: Option<&[f64]>, progress: &
     // the curvature it is the maps stage's when the maps are made on the mesh itself (every
     // search takes a copy); with both, the final ranking's, which decides between the
     // searches' symmetries and ranks the report.
-    let plain_judge = Judge::new(&mesh.vertices, normals.clone(), &adjacency, scale, &params.judge).with_band(Some(LowBand::from_basis(basis.evecs.as_ref(), &basis.mass)));
+    let plain_judge = Judge::new(&mesh.vertices, normals.clone(), &adjacency, scale, &params.judge).with_band(Some(LowBand::from_basis(basis)));
     let mesh_judge = plain_judge.clone().with_curvature(mesh_curvature.clone());
     let shared = Shared { mesh, basis, desc: &desc, emb, oriented: &oriented, normals: &normals, curvature: &mesh_curvature, scale, adjacency: &adjacency, judge: &plain_judge };
     // Searches from different first samples until one finds a symmetry the judge trusts
@@ -1042,7 +1042,7 @@ fn search(shared: &Shared<'_>, params: &Params, seed: u64, timings: &mut Timings
         (_, h) => h.clone(),
     };
     let domain_judge = match &proxy {
-        Some(p) => Judge::new(&p.positions, p.seeds.iter().map(|&s| normals[s]).collect(), &p.adjacency, scale, &params.judge).with_band(Some(LowBand::from_basis(p.basis.evecs.as_ref(), &p.basis.mass))),
+        Some(p) => Judge::new(&p.positions, p.seeds.iter().map(|&s| normals[s]).collect(), &p.adjacency, scale, &params.judge).with_band(Some(LowBand::from_basis(&p.basis))),
         None => mesh_judge.clone(),
     };
     ctx.judge = Some((domain_judge, probes.to_vec(), params.max_distortion));

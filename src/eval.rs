@@ -126,7 +126,7 @@ pub fn judge_maps(mesh: &Mesh, params: &crate::Params, maps: &[Vec<i64>]) -> Res
     let diameter = emb.diameter_of(&samples);
     let normals = mesh.vertex_normals(&mesh.oriented_triangles());
     let curvature = crate::detect::band_limited_curvature(None, &mesh, &normals, &basis, &params.maps);
-    let judge = crate::judge::Judge::new(&mesh.vertices, normals, &mesh.adjacency(), mesh.area().sqrt(), &params.judge).with_curvature(curvature).with_band(Some(crate::judge::LowBand::from_basis(basis.evecs.as_ref(), &basis.mass)));
+    let judge = crate::judge::Judge::new(&mesh.vertices, normals, &mesh.adjacency(), mesh.area().sqrt(), &params.judge).with_curvature(curvature).with_band(Some(crate::judge::LowBand::from_basis(&basis)));
     Ok(maps
         .iter()
         .map(|map| {
