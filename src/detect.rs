@@ -185,7 +185,7 @@ pub struct Params {
     pub continuous: ContinuousParams,
     /// Partial symmetries between repeated parts ([`crate::parts`]).
     pub parts: PartParams,
-    /// A component of more than 3 times this many vertices is detected on a coarse mesh of
+    /// A component of more than 4 times this many vertices is detected on a coarse mesh of
     /// this many, and the maps are lifted ([`crate::hierarchy`]; default 6000, 0: never).
     pub hierarchy_vertices: usize,
 }

@@ -78,7 +78,7 @@ enum Command {
         /// many vertices and lift them to every vertex (0: always on the whole mesh).
         #[arg(long, default_value_t = 6000)]
         proxy_vertices: usize,
-        /// On a component of more than 3 times this many vertices, detect on a coarse mesh of
+        /// On a component of more than 4 times this many vertices, detect on a coarse mesh of
         /// this many vertices and lift the maps to every vertex (0: always at full resolution).
         #[arg(long, default_value_t = 6000)]
         hierarchy_vertices: usize,
