@@ -8,9 +8,12 @@ vertices: 20k for TOSCA and FAUST, 34-48k for the kids), and every vertex moved 
 noise of `noise` times the bounding-box diagonal (fixed seed per shape). The original vertices
 keep their indices, so the ground truth still holds on them and is written for them only (the
 scorer counts only annotated vertices). Written as OUT_DIR/<dataset>_x4/<shape>.off and
-.sym.txt, a folder `intrinsym-eval --data OUT_DIR` reads like shared/data. Above 18,000
-vertices the detection runs on the hierarchy's coarse mesh, so these shapes measure the coarse
-size on 111 shapes of three kinds instead of the five KIDS poses alone.
+.sym.txt, a folder `intrinsym-eval --data OUT_DIR` reads like shared/data. Above 24,000
+vertices (4 × `hierarchy_vertices`; 18,000 until session 27) the detection runs on the
+hierarchy's coarse mesh: the kids' copies do by default, the 20k TOSCA and FAUST copies with
+`--set hierarchy_vertices=N` for N < 5000 (at 6000 they measured the margin's change,
+docs/hierarchy-benchmark.md, "Session 27"), and `--set hierarchy_vertices=0` gives full
+resolution for all of them.
 """
 import argparse
 import glob
