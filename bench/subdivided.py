@@ -18,6 +18,7 @@ resolution for all of them.
 import argparse
 import glob
 import os
+import shutil
 import sys
 import zlib
 
@@ -48,8 +49,7 @@ def main():
             diag = np.linalg.norm(v.max(0) - v.min(0))
             nv = nv + rng.normal(scale=a.noise * diag, size=nv.shape)
             write_off(off, nv, nf)
-            with open(sym) as src, open(os.path.join(dst, name + ".sym.txt"), "w") as out:
-                out.write(src.read())
+            shutil.copyfile(sym, os.path.join(dst, name + ".sym.txt"))
             print(ds, name, len(v), "->", len(nv), flush=True)
 
 
