@@ -518,7 +518,7 @@ fn detect_part(mesh: Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
         None
     };
     let Some(h) = built else {
-        let (det, spectral) = pipeline(&mesh, params, None, progress)?;
+        let (det, spectral) = pipeline(&mesh, params, None, None, progress)?;
         return Ok(PartResult { det, spectral, domain: mesh, hierarchy: None });
     };
     let building = t.elapsed().as_secs_f64();
@@ -533,10 +533,13 @@ fn detect_part(mesh: Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
         let (raw, mass) = crate::descriptors::curvature::raw_mean_curvature(&mesh, &normals);
         crate::descriptors::curvature::restrict_to_cells(&raw, &mass, &h.owner, coarse.num_vertices())
     });
+    // The fine lumped mass: the coarse eigenbasis's cell masses, later the judge's band.
+    let fine_mass = crate::spectral::mass::lumped_mass(&mesh, &crate::spectral::cotan::mollified_edge_lengths(&mesh));
+    let cell_mass = h.cell_mass(&fine_mass, coarse.area());
     if !progress(0.1) {
         return Err(Error::Cancelled { stage: "hierarchy" });
     }
-    let (mut det, spectral) = pipeline(&coarse, params, curvature.as_deref(), &mut |f| progress(0.1 + 0.8 * f))?;
+    let (mut det, spectral) = pipeline(&coarse, params, Some(&cell_mass), curvature.as_deref(), &mut |f| progress(0.1 + 0.8 * f))?;
     let t = Instant::now();
     let m = coarse.num_vertices();
     // The coarse detection's indices are the coarse mesh's inputs; its vertex c is input
@@ -577,7 +580,6 @@ fn detect_part(mesh: Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
     // `report` ranks a mesh's own; curvature and low band are the coarse mesh's, constant on
     // each cell.
     let fine_curvature = spectral.curvature.as_deref().map(|coarse| h.on_fine(coarse));
-    let fine_mass = crate::spectral::mass::lumped_mass(&mesh, &crate::spectral::cotan::mollified_edge_lengths(&mesh));
     let fine_band = LowBand::from_basis(&spectral.basis).on_fine(&h.owner, fine_mass);
     let judge = Judge::new(&mesh.vertices, normals, &h.fine_adjacency, mesh.area().sqrt(), &params.judge).with_curvature(fine_curvature).with_band(Some(fine_band));
     let count = det.symmetries.len();
@@ -783,17 +785,19 @@ fn swap(
     }
 }
 
-/// [`detect`] on the current thread, on one connected mesh. `curvature`: the raw mean
-/// curvature of its vertices when known from a finer mesh
-/// ([`crate::descriptors::curvature::restrict_to_cells`]); `None` estimates it on `mesh`.
-fn pipeline(mesh: &Mesh, params: &Params, curvature: Option<&[f64]>, progress: &mut dyn FnMut(f64) -> bool) -> Result<(Detection, Spectral), Error> {
+/// [`detect`] on the current thread, on one connected mesh. `mass` and `curvature`: the
+/// vertex masses of the eigenbasis and the raw mean curvature of its vertices when known from
+/// a finer mesh ([`crate::hierarchy::Hierarchy::cell_mass`],
+/// [`crate::descriptors::curvature::restrict_to_cells`]); `None` computes them on `mesh`
+/// (its lumped mass; the curvature estimated on it).
+fn pipeline(mesh: &Mesh, params: &Params, mass: Option<&[f64]>, curvature: Option<&[f64]>, progress: &mut dyn FnMut(f64) -> bool) -> Result<(Detection, Spectral), Error> {
     let t_all = Instant::now();
     let mut timings = Timings::default();
     let cancelled = |stage: &'static str| Error::Cancelled { stage };
     let n = mesh.num_vertices();
 
     let t = Instant::now();
-    let basis_owned = Eigenbasis::compute_with_progress(mesh, &params.eigen_for(n), &mut |f| progress(0.6 * f))?;
+    let basis_owned = Eigenbasis::compute_with_mass(mesh, mass, &params.eigen_for(n), &mut |f| progress(0.6 * f))?;
     let basis = &basis_owned;
     timings.spectral = t.elapsed().as_secs_f64();
 

@@ -9,17 +9,33 @@
 //! 1. **Coarse mesh** ([`simplify`]): quadric-error edge collapse down to `m` vertices, each a
 //!    vertex of the fine mesh, keeping the topology (link condition), boundaries and thin parts
 //!    (a finger's vertices carry the quadrics of its sides: shortening it is expensive).
-//! 2. **Detection** on the coarse mesh: the whole pipeline — eigenbasis, descriptors, sampling,
-//!    voting, hypotheses, refinement, judge — exactly as on any mesh of `m` vertices.
-//! 3. **Cells**: every fine vertex belongs to its geodesically nearest coarse vertex (one
+//! 2. **Cells**: every fine vertex belongs to its geodesically nearest coarse vertex (one
 //!    multi-source Dijkstra on the fine edge graph).
+//! 3. **Detection** on the coarse mesh: the whole pipeline — eigenbasis, descriptors, sampling,
+//!    voting, hypotheses, refinement, judge — as on any mesh of `m` vertices, except the mass
+//!    matrix of its eigenproblem `L_c φ = λ M φ`: `M = diag(A_c)`, `A_c` the area of the fine
+//!    mesh's cell of coarse vertex `c` ([`Hierarchy::cell_mass`]; the proxy of
+//!    [`crate::maps::proxy`] weighs its seeds the same way), not the coarse mesh's lumped mass
+//!    (a third of the area of its triangles around `c`). The stiffness `L_c` stays the coarse
+//!    mesh's cotangent Laplacian. The simplification leaves triangles of very different shapes
+//!    side by side, and their lumped mass is a poor quadrature of the surface: on the 60k KIDS
+//!    poses the ratio of cell area to lumped mass spreads from 0.44 to 3.7 (1st and 99th
+//!    percentiles; coefficient of variation of the masses 0.48 lumped, 0.35 cells), and every
+//!    `⟨f, g⟩_M` of the pipeline — the M-orthonormality of the basis, the functional maps
+//!    `C = Φᵀ M Φ[T]`, the band-limited curvature — weighs the surface unevenly. Measured
+//!    (best / first acc@0.05, mean over seeds 0–3, 10, 20; docs/hierarchy-benchmark.md,
+//!    "Session 28"): the 60k KIDS poses 93.3 / 93.3% → 95.2 / 95.2% (full resolution:
+//!    94.8%), scan-like copies of the SHREC'16 kids (34–48k) 65.1 / 57.7% → 66.2 / 58.5%.
+//!    A Galerkin operator (`PᵀLP` and `PᵀMP` with a smoothed-aggregation prolongation of the
+//!    cells) was far worse: eigenvalues 1.4–3 times the fine mesh's.
 //! 4. **Lift** ([`crate::maps::proxy`]'s local trilateration): a fine vertex is placed relative
 //!    to the images of its cell's coarse vertex and that vertex's coarse neighbours, preserving
 //!    its straight distances to them, by greedy descent on the fine mesh.
 //! 5. **Judge** ([`crate::judge`]) of the lifted maps on the fine mesh (its 600 stencils), which
 //!    ranks them as a mesh's own maps are ranked.
 //!
-//! What is computed at full resolution: only the cells, the lift (O(n log n) and O(n)), the
+//! What is computed at full resolution: only the cells, the lumped mass (summed into the cell
+//! masses; also the judge's band trace), the lift (O(n log n) and O(n)), the
 //! judge's stencils, the mean curvature of the polish's curvature term (one pass over the
 //! triangles, averaged over each cell: [`crate::descriptors::curvature`]) and the outputs
 //! themselves (maps and confidences). No eigenpair, descriptor or dense `n × k`
@@ -123,6 +139,26 @@ impl Hierarchy {
         crate::maps::proxy::lift(&self.seeds, &self.owner, &seed_positions, &self.coarse_adjacency, &self.fine_adjacency, positions, m)
     }
 
+    /// The area of each coarse vertex's cell on the fine mesh (`fine_mass` the fine lumped
+    /// mass), scaled to sum to `total` (the coarse mesh's area, in its units): the coarse
+    /// eigenbasis's mass matrix (module docs, step 2). A cell that holds no area (its seed
+    /// shares a position with another seed that took its vertices) gets the smallest cell's,
+    /// so every mass stays positive.
+    pub fn cell_mass(&self, fine_mass: &[f64], total: f64) -> Vec<f64> {
+        let mut mass = vec![0.0f64; self.seeds.len()];
+        for (&c, &m) in self.owner.iter().zip(fine_mass) {
+            mass[c as usize] += m;
+        }
+        let smallest = mass.iter().copied().filter(|&m| m > 0.0).fold(f64::INFINITY, f64::min);
+        if smallest.is_finite() {
+            mass.iter_mut().filter(|m| !(**m > 0.0)).for_each(|m| *m = smallest);
+        }
+        let sum: f64 = mass.iter().sum();
+        let scale = if sum > 0.0 { total / sum } else { 1.0 };
+        mass.iter_mut().for_each(|m| *m *= scale);
+        mass
+    }
+
     /// A field on the coarse mesh's vertices carried to every fine vertex: each takes its
     /// cell's value (the counterpart of [`crate::descriptors::curvature::restrict_to_cells`], which
     /// averages a fine field over each cell).
@@ -151,5 +187,34 @@ mod tests {
         let lifted = h.lift(&c.mesh.vertices, &m);
         let exact = (0..c.mesh.num_vertices()).filter(|&v| lifted.map[v] == v as i64).count();
         assert!(exact as f64 > 0.95 * c.mesh.num_vertices() as f64, "{exact} fixed");
+    }
+
+    /// The cell masses are the fine mesh's area, each cell's share of it, and an eigenbasis of
+    /// the coarse mesh weighed by them is closer to the fine mesh's spectrum than one weighed
+    /// by the coarse mesh's own lumped mass (module docs, step 3).
+    #[test]
+    fn cell_masses_measure_the_fine_surface() {
+        use crate::spectral::{mass, cotan, EigenParams, Eigenbasis};
+        let c = shapes::quadruped(5, Pose::Walking, 0.0, 0);
+        let (fine, _) = c.mesh.normalized();
+        let h = Hierarchy::new(&fine, 2000).unwrap();
+        let fine_mass = mass::lumped_mass(&fine, &cotan::mollified_edge_lengths(&fine));
+        let cells = h.cell_mass(&fine_mass, h.coarse.area());
+        assert!(cells.iter().all(|&m| m > 0.0));
+        assert!((cells.iter().sum::<f64>() - h.coarse.area()).abs() < 1e-9);
+        let mut direct = vec![0.0; 2000];
+        for v in 0..fine.num_vertices() {
+            direct[h.owner[v] as usize] += fine_mass[v];
+        }
+        let scale = h.coarse.area() / fine_mass.iter().sum::<f64>();
+        assert!(cells.iter().zip(&direct).all(|(a, b)| (a - b * scale).abs() <= 1e-12 * a.max(1e-9)));
+        let params = EigenParams { k: 40, ..Default::default() };
+        let exact = Eigenbasis::compute(&fine, &params).unwrap();
+        let lumped = Eigenbasis::compute(&h.coarse, &params).unwrap();
+        let weighed = Eigenbasis::compute_with_mass(&h.coarse, Some(&cells), &params, &mut |_| true).unwrap();
+        let error = |b: &Eigenbasis| (1..40).map(|i| (b.evals[i] * b.area / (exact.evals[i] * exact.area) - 1.0).abs()).sum::<f64>() / 39.0;
+        let (e_lumped, e_cells) = (error(&lumped), error(&weighed));
+        eprintln!("mean relative eigenvalue error: lumped {e_lumped:.4}, cells {e_cells:.4}");
+        assert!(e_cells < e_lumped, "lumped {e_lumped}, cells {e_cells}");
     }
 }

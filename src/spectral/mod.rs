@@ -3,7 +3,8 @@
 //! The generalized eigenproblem
 //! $$L\,\varphi_i = \lambda_i M \varphi_i,\qquad 0 = \lambda_0 < \lambda_1 \le \dots \le \lambda_{k-1},\qquad \Phi^\top M \Phi = I$$
 //! with `L` the cotangent Laplacian ([`cotan`], PSD convention) and `M` the lumped mass
-//! ([`mass`]), solved by shift-invert block Lanczos ([`eigen`]). The paper
+//! ([`mass`]; on the coarse mesh of a large one, the area of each vertex's cell on the fine
+//! mesh: [`crate::hierarchy`]), solved by shift-invert block Lanczos ([`eigen`]). The paper
 //! (Mukhopadhyay, Bhandarkar & Porikli, "Detection and Characterization of Intrinsic Symmetry",
 //! §3) builds both its descriptor (WKS) and its intrinsic distance (biharmonic) on this basis.
 //!
@@ -97,6 +98,18 @@ impl Eigenbasis {
         params: &EigenParams,
         progress: &mut dyn FnMut(f64) -> bool,
     ) -> Result<Eigenbasis, SpectralError> {
+        Self::compute_with_mass(mesh, None, params, progress)
+    }
+
+    /// As [`Eigenbasis::compute_with_progress`], with the vertex masses `mass` (in the mesh's
+    /// units, `(n,)`, positive) in place of the lumped mass when given: a coarse mesh's cells
+    /// measured on its fine mesh ([`crate::hierarchy::Hierarchy::cell_mass`]).
+    pub(crate) fn compute_with_mass(
+        mesh: &Mesh,
+        mass: Option<&[f64]>,
+        params: &EigenParams,
+        progress: &mut dyn FnMut(f64) -> bool,
+    ) -> Result<Eigenbasis, SpectralError> {
         let t = Instant::now();
         // The eigenproblem is solved on the mesh scaled to unit area (the solver's shift and
         // tolerances are absolute numbers), and its answer returned in the input's units:
@@ -106,7 +119,10 @@ impl Eigenbasis {
         let (unit, s) = mesh.normalized();
         let lengths = cotan::mollified_edge_lengths(&unit);
         let laplacian = cotan::cotan_laplacian(&unit, &lengths);
-        let unit_mass = mass::lumped_mass(&unit, &lengths);
+        let unit_mass = match mass {
+            Some(given) => given.iter().map(|m| m / (s * s)).collect(),
+            None => mass::lumped_mass(&unit, &lengths),
+        };
         let assembly_seconds = t.elapsed().as_secs_f64();
         let (mut evals, mut evecs, mut info) = eigen::eigen(&laplacian, &unit_mass, params, progress)?;
         if s != 1.0 {
