@@ -218,4 +218,29 @@ mod tests {
         eprintln!("mean relative eigenvalue error: lumped {e_lumped:.4}, cells {e_cells:.4}");
         assert!(e_cells < e_lumped, "lumped {e_lumped}, cells {e_cells}");
     }
+
+    /// A cell that holds no fine vertex (its seed coincides with another seed that took them)
+    /// still gets a positive mass, the smallest cell's, and the masses sum to the total asked.
+    #[test]
+    fn an_empty_cell_gets_the_smallest_mass() {
+        let c = shapes::quadruped(4, Pose::Walking, 0.0, 0);
+        let mut h = Hierarchy::new(&c.mesh, 300).unwrap();
+        let fine_mass = vec![1.0; c.mesh.num_vertices()];
+        // Empty cell 7: its vertices go to cell 8.
+        for o in &mut h.owner {
+            if *o == 7 {
+                *o = 8;
+            }
+        }
+        let mass = h.cell_mass(&fine_mass, 2.0);
+        let sizes = |k: u32| h.owner.iter().filter(|&&o| o == k).count() as f64;
+        let smallest = (0..300u32).map(sizes).filter(|&s| s > 0.0).fold(f64::INFINITY, f64::min);
+        let total: f64 = mass.iter().sum();
+        assert!(mass.iter().all(|&m| m > 0.0));
+        assert!((total - 2.0).abs() < 1e-12, "{total}");
+        // Every cell's mass is its share of the total (the empty one counted at the smallest size).
+        let unit = 2.0 / (c.mesh.num_vertices() as f64 + smallest);
+        assert!((mass[7] - smallest * unit).abs() < 1e-12);
+        assert!((mass[8] - sizes(8) * unit).abs() < 1e-12);
+    }
 }
