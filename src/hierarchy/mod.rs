@@ -142,7 +142,7 @@ impl Hierarchy {
 
     /// The area of each coarse vertex's cell on the fine mesh (`fine_mass` the fine lumped
     /// mass), scaled to sum to `total` (the coarse mesh's area, in its units): the coarse
-    /// eigenbasis's mass matrix (module docs, step 2). A cell that holds no area (its seed
+    /// eigenbasis's mass matrix (module docs, step 3). A cell that holds no area (its seed
     /// shares a position with another seed that took its vertices) gets the smallest cell's,
     /// so every mass stays positive.
     pub fn cell_mass(&self, fine_mass: &[f64], total: f64) -> Vec<f64> {

@@ -74,7 +74,7 @@ pub struct Eigenbasis {
     pub evals: Vec<f64>,
     /// `(n, k)` eigenvectors, M-orthonormal; column 0 is the constant `1/√area`.
     pub evecs: Mat<f64>,
-    /// `(n,)` lumped mass.
+    /// `(n,)` lumped mass (on a coarse mesh of the hierarchy, its cells' areas).
     pub mass: Vec<f64>,
     /// `(n, n)` cotangent Laplacian.
     pub laplacian: CsMat<f64>,
@@ -120,7 +120,10 @@ impl Eigenbasis {
         let lengths = cotan::mollified_edge_lengths(&unit);
         let laplacian = cotan::cotan_laplacian(&unit, &lengths);
         let unit_mass = match mass {
-            Some(given) => given.iter().map(|m| m / (s * s)).collect(),
+            Some(given) => {
+                debug_assert_eq!(given.len(), mesh.num_vertices(), "one mass per vertex");
+                given.iter().map(|m| m / (s * s)).collect()
+            }
             None => mass::lumped_mass(&unit, &lengths),
         };
         let assembly_seconds = t.elapsed().as_secs_f64();
