@@ -58,10 +58,9 @@ use crate::mesh::{Mesh, MeshError, MeshParams};
 /// (TOSCA 88.5 → 86.9%, FAUST 92.3 → 90.7%) for ×0.55–0.7 of the time, so the margin was raised
 /// from 3 to 4 (docs/hierarchy-benchmark.md, "Session 27"). The copies of the SHREC'16 kids
 /// (34–48k vertices) stay on it (65.3%, 64.2% with the cell masses of step 3, against 63.7% at
-/// full resolution; seeds 0–2). Smaller meshes
-/// stay off it for the same reason: simplifying the glued SHREC'16 kids (11–12k vertices) to
-/// half their vertices gave best acc@0.05 45–58% against 54.6% at full resolution, from
-/// neighbouring settings of the simplification.
+/// full resolution; seeds 0–2). Smaller meshes stay off it for the same reason: simplifying
+/// the glued SHREC'16 kids (11–12k vertices) to half their vertices gave best acc@0.05 45–58%
+/// against 54.6% at full resolution, from neighbouring settings of the simplification.
 pub(crate) const MARGIN: f64 = 4.0;
 
 /// The simplification's share of [`Hierarchy::with_progress`]'s progress (the Voronoi cells
