@@ -820,7 +820,8 @@ fn pipeline(mesh: &Mesh, params: &Params, mass: Option<&[f64]>, curvature: Optio
     // searches' symmetries and ranks the report.
     let plain_judge = Judge::new(&mesh.vertices, normals.clone(), &adjacency, scale, &params.judge).with_band(Some(LowBand::from_basis(basis)));
     let mesh_judge = plain_judge.clone().with_curvature(mesh_curvature.clone());
-    let shared = Shared { mesh, basis, desc: &desc, emb, oriented: &oriented, normals: &normals, curvature: &mesh_curvature, scale, adjacency: &adjacency, judge: &plain_judge };
+    let reversing = std::sync::OnceLock::new();
+    let shared = Shared { mesh, basis, desc: &desc, emb, oriented: &oriented, normals: &normals, curvature: &mesh_curvature, scale, adjacency: &adjacency, judge: &plain_judge, reversing: &reversing };
     // Searches from different first samples until one finds a symmetry the judge trusts
     // (`Params::restarts`); their symmetries are pooled.
     let mut found: Vec<Found> = Vec::new();
@@ -975,6 +976,11 @@ struct Shared<'a> {
     adjacency: &'a (Vec<usize>, Vec<u32>),
     /// The judge on the mesh, without curvature (the maps stage's when it works on the mesh).
     judge: &'a Judge,
+    /// The orientation-reversing functional map of the hypothesis generator
+    /// ([`maps::orientation`]), made by the first search that asks: it depends on the mesh, its
+    /// basis and descriptors only, not on the samples, so a restart takes it as it is (its
+    /// point map, read through the search's own samples, is the search's).
+    reversing: &'a std::sync::OnceLock<Option<Mat<f64>>>,
 }
 
 /// One search: the symmetries found from one set of samples, on the mesh's vertices.
@@ -993,7 +999,7 @@ struct Search {
 /// the lift of a proxy's maps to the mesh. `progress` gets the fractions 0.6–0.96 of a
 /// single search. Writes its stages' `timings`.
 fn search(shared: &Shared<'_>, params: &Params, seed: u64, timings: &mut Timings, progress: &mut dyn FnMut(f64) -> bool) -> Result<Search, Error> {
-    let Shared { mesh, basis, desc, emb, oriented, normals, curvature: mesh_curvature, scale, adjacency, judge: mesh_judge } = *shared;
+    let Shared { mesh, basis, desc, emb, oriented, normals, curvature: mesh_curvature, scale, adjacency, judge: mesh_judge, reversing } = *shared;
     let cancelled = |stage: &'static str| Error::Cancelled { stage };
     let n = mesh.num_vertices();
     let t = Instant::now();
@@ -1077,7 +1083,10 @@ fn search(shared: &Shared<'_>, params: &Params, seed: u64, timings: &mut Timings
     // descriptors alone (`maps::orientation`), on the mesh, its point map on the domain.
     let fmap = || {
         let t = Instant::now();
-        (fmap_hypothesis(mesh, oriented, fine_basis, desc, &ctx, probes, vinfo.diameter, params), t.elapsed().as_secs_f64())
+        // Only this closure asks for the map, so no task waits on its initialisation (the
+        // parallel loops inside it cannot take a task that would).
+        let c = reversing.get_or_init(|| (params.maps.orientation.k > 0).then(|| maps::orientation::reversing_fmap(mesh, oriented, fine_basis, desc, &params.maps.orientation)).flatten());
+        (c.as_ref().and_then(|c| fmap_hypothesis(c, &ctx, probes, vinfo.diameter, params)), t.elapsed().as_secs_f64())
     };
     let (profiled, (fmap_hypothesis, fmap_seconds)) = crate::parallel::join(|| crate::parallel::map(&ranked, profile), fmap);
     let mut profiled: Vec<(maps::DenseMap, (usize, usize), f64)> = profiled.into_iter().flatten().collect();
@@ -1486,17 +1495,12 @@ fn in_input_indices(mesh: &Mesh, dense: &maps::DenseMap) -> (Vec<i64>, Vec<f64>)
     (map, confidence)
 }
 
-/// The hypotheses phase's second generator: the orientation-reversing functional map from the
-/// descriptors alone (`maps::orientation`), computed on the mesh, its point map on the maps'
-/// domain (`ctx`), with its seed and sample distortion; `None` when it cannot be computed or is
-/// mostly the identity.
-#[allow(clippy::too_many_arguments)]
-fn fmap_hypothesis(mesh: &Mesh, oriented: &[[u32; 3]], basis: &Eigenbasis, desc: &Mat<f64>, ctx: &Context<'_>, probes: &[usize], diameter: f64, params: &Params) -> Option<(maps::DenseMap, (usize, usize), f64)> {
-    if params.maps.orientation.k == 0 {
-        return None;
-    }
-    let c = maps::orientation::reversing_fmap(mesh, oriented, basis, desc, &params.maps.orientation)?;
-    let dense = maps::from_functional_map(ctx, &c, probes, &params.maps)?;
+/// The hypotheses phase's second generator: the point map on the maps' domain (`ctx`) of the
+/// orientation-reversing functional map `c` from the descriptors alone (`maps::orientation`,
+/// computed on the mesh), with its seed and sample distortion; `None` when it cannot be read
+/// or is mostly the identity.
+fn fmap_hypothesis(c: &Mat<f64>, ctx: &Context<'_>, probes: &[usize], diameter: f64, params: &Params) -> Option<(maps::DenseMap, (usize, usize), f64)> {
+    let dense = maps::from_functional_map(ctx, c, probes, &params.maps)?;
     if ctx.verdict(&dense.map).is_some_and(|v| v.fixed > params.max_fixed) {
         return None;
     }

@@ -254,29 +254,24 @@ fn solve(src: &Operators, dst: &Operators, reversing: bool, params: &Orientation
     terms.extend(dst.d.iter().zip(&src.d).map(|(dd, ds)| (-2.0 * wc, dd, ds)));
     terms.extend(dst.g.iter().zip(&src.g).map(|(gd, gs)| (sigma * wo, gd, gs)));
     terms.extend(transposed.iter().map(|(gd, gs)| (sigma * wo, gd, gs)));
-    // Columns of the normal matrix, built on all cores.
-    let blocks = crate::parallel::chunks(kk, |cols| {
-        let mut out = vec![0.0; cols.len() * kk];
-        for (c, col) in cols.clone().zip(out.chunks_mut(kk)) {
-            let (j2, i2) = (c / k, c % k);
-            for &(w, x, y) in &terms {
-                for j1 in 0..k {
-                    let xw = w * x[(j1, j2)];
-                    if xw == 0.0 {
-                        continue;
-                    }
-                    let dst = &mut col[j1 * k..(j1 + 1) * k];
-                    for (i1, d) in dst.iter_mut().enumerate() {
-                        *d += xw * y[(i1, i2)];
-                    }
-                }
-            }
-            col[c] += wl * lap(i2, j2);
-        }
-        out
+    // `Σ_t w_t X_t ⊗ Y_t` as one product: `P = U V` with `U[(j1·K + j2), t] = w_t X_t[j1, j2]`
+    // and `V[t, (i1·K + i2)] = Y_t[i1, i2]` holds every entry once, `P[(j1·K + j2), (i1·K + i2)]
+    // = H[(j1·K + i1), (j2·K + i2)]`, and `H` is `P` with its indices regrouped. The product
+    // has 38 inner terms (K = 30, 12 descriptors) and runs as one matrix product; entry by
+    // entry the same sums took 0.06 s of the hypothesis's 0.1 s at 5k vertices.
+    let u = Mat::<f64>::from_fn(kk, terms.len(), |r, t| terms[t].0 * terms[t].1[(r / k, r % k)]);
+    let v = Mat::<f64>::from_fn(terms.len(), kk, |t, c| terms[t].2[(c / k, c % k)]);
+    let mut prod = Mat::<f64>::zeros(kk, kk);
+    matmul(prod.as_mut(), Accum::Replace, u.as_ref(), v.as_ref(), 1.0, Par::Seq);
+    let mut h = Mat::<f64>::from_fn(kk, kk, |r, c| {
+        let (j1, i1, j2, i2) = (r / k, r % k, c / k, c % k);
+        prod[(j1 * k + j2, i1 * k + i2)]
     });
-    let columns: Vec<f64> = blocks.concat();
-    let mut h = Mat::<f64>::from_fn(kk, kk, |r, c| columns[c * kk + r]);
+    for j in 0..k {
+        for i in 0..k {
+            h[(j * k + i, j * k + i)] += wl * lap(i, j);
+        }
+    }
     let mut rhs = Mat::<f64>::zeros(kk, 1);
     for j in 0..k {
         for i in 0..k {
