@@ -198,14 +198,11 @@ pub fn fmap_between(src: &Operators, dst: &Operators, reversing: bool, params: &
     (src.k() == dst.k() && src.a.ncols() == dst.a.ncols()).then(|| solve(src, dst, reversing, params)).flatten()
 }
 
-/// The normal equations of the energy between `src` and `dst` (the same operators for a map of
-/// a shape onto itself) in `vec(C)` (column-major: entry `(i, j)` at `j·K + i`), solved by
-/// Cholesky. Every term has the form `‖C X ∓ Y C‖²` with `X` of `dst` and `Y` of `src`,
-/// whose normal matrix is `X Xᵀ ⊗ I ∓ (X ⊗ Y + Xᵀ ⊗ Yᵀ) + I ⊗ YᵀY`.
-fn solve(src: &Operators, dst: &Operators, reversing: bool, params: &OrientationParams) -> Option<Mat<f64>> {
+/// The four terms' weights over their normalisers, `[w_d/τ_d, w_l/τ_l, w_c/τ_c, w_o/τ_o]`
+/// (each weight over the weights' sum); `None` when the weights do not sum to a positive number.
+fn weights(src: &Operators, dst: &Operators, params: &OrientationParams) -> Option<[f64; 4]> {
     let k = src.k();
     let p = src.a.ncols() as f64;
-    let kk = k * k;
     let total = params.w_descr + params.w_lap + params.w_dcomm + params.w_orient;
     if total.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
         return None;
@@ -224,6 +221,17 @@ fn solve(src: &Operators, dst: &Operators, reversing: bool, params: &Orientation
     let (ts, td) = (tau(src), tau(dst));
     let [tau_descr, tau_lap, tau_dcomm, tau_orient] = std::array::from_fn(|i| (0.5 * (ts[i] + td[i])).max(1e-300));
     let (wd, wl, wc, wo) = (params.w_descr / total / tau_descr, params.w_lap / total / tau_lap, params.w_dcomm / total / tau_dcomm, params.w_orient / total / tau_orient);
+    Some([wd, wl, wc, wo])
+}
+
+/// The normal equations of the energy between `src` and `dst` (the same operators for a map of
+/// a shape onto itself) in `vec(C)` (column-major: entry `(i, j)` at `j·K + i`), solved by
+/// Cholesky. Every term has the form `‖C X ∓ Y C‖²` with `X` of `dst` and `Y` of `src`,
+/// whose normal matrix is `X Xᵀ ⊗ I ∓ (X ⊗ Y + Xᵀ ⊗ Yᵀ) + I ⊗ YᵀY`.
+fn solve(src: &Operators, dst: &Operators, reversing: bool, params: &OrientationParams) -> Option<Mat<f64>> {
+    let k = src.k();
+    let kk = k * k;
+    let [wd, wl, wc, wo] = weights(src, dst, params)?;
     // The orientation term's sign: `C G + G C` for a reversing map, `C G − G C` otherwise.
     let sigma = if reversing { 1.0 } else { -1.0 };
     // Laplacian: (λ^dst_j − λ^src_i)² on entry (i, j).
@@ -316,5 +324,63 @@ mod tests {
         let fixed = (0..n).filter(|&v| dist(image[v], v) < 0.03).count();
         assert!(near_mirror as f64 > 0.7 * n as f64, "{near_mirror} of {n} near the mirror");
         assert!((fixed as f64) < 0.2 * n as f64, "{fixed} of {n} fixed");
+    }
+
+    /// Random operators of `K = 6` functions and 3 descriptors (`D_f` symmetric, as
+    /// `Φᵀ M diag(f) Φ` is), from a small linear congruential generator.
+    fn random_operators(seed: u64) -> Operators {
+        let mut state = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        let mut next = move || {
+            state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        };
+        let (k, p) = (6, 3);
+        let a = Mat::<f64>::from_fn(k, p, |_, _| next());
+        let d = (0..p)
+            .map(|_| {
+                let r = Mat::<f64>::from_fn(k, k, |_, _| next());
+                Mat::<f64>::from_fn(k, k, |i, j| r[(i, j)] + r[(j, i)])
+            })
+            .collect();
+        let g = (0..p).map(|_| Mat::<f64>::from_fn(k, k, |_, _| next())).collect();
+        let evals = (0..k).map(|i| i as f64 * (1.0 + 0.3 * next().abs())).collect();
+        Operators { a, d, g, evals }
+    }
+
+    /// The energy of the module docs, term by term from its definition.
+    fn energy(src: &Operators, dst: &Operators, reversing: bool, w: [f64; 4], c: &Mat<f64>) -> f64 {
+        let sq = |m: Mat<f64>| m.norm_l2().powi(2);
+        let sigma = if reversing { 1.0 } else { -1.0 };
+        let k = src.k();
+        let descr = sq(c * &dst.a - &src.a);
+        let lap: f64 = (0..k).flat_map(|i| (0..k).map(move |j| (i, j))).map(|(i, j)| ((dst.evals[j] - src.evals[i]) * c[(i, j)]).powi(2)).sum();
+        let comm: f64 = src.d.iter().zip(&dst.d).map(|(ds, dd)| sq(c * dd - ds * c)).sum();
+        let orient: f64 = src.g.iter().zip(&dst.g).map(|(gs, gd)| sq(c * gd + (gs * c) * sigma)).sum();
+        w[0] * descr + w[1] * lap + w[2] * comm + w[3] * orient
+    }
+
+    /// The solution of the assembled normal equations is the energy's minimiser: in random
+    /// directions `Δ` the energy's change has no first-order part (`E(C + Δ) − E(C − Δ)`, twice
+    /// the gradient along `Δ`, is nothing against the second-order part) and is positive; for
+    /// a self-map and between two shapes, reversing and preserving.
+    #[test]
+    fn the_normal_equations_give_the_minimiser_of_the_energy() {
+        let params = OrientationParams::default();
+        let (one, other) = (random_operators(1), random_operators(2));
+        for (src, dst) in [(&one, &one), (&one, &other)] {
+            for reversing in [true, false] {
+                let c = solve(src, dst, reversing, &params).expect("a solution");
+                let w = weights(src, dst, &params).unwrap();
+                let e = energy(src, dst, reversing, w, &c);
+                let directions = random_operators(3 + reversing as u64);
+                for delta in directions.d.iter().chain(&directions.g) {
+                    let delta = delta * (0.1 * c.norm_l2() / delta.norm_l2());
+                    let (plus, minus) = (energy(src, dst, reversing, w, &(&c + &delta)), energy(src, dst, reversing, w, &(&c - &delta)));
+                    let second = 0.5 * (plus + minus) - e;
+                    assert!(second > 0.0, "the energy does not rise: {second}");
+                    assert!((plus - minus).abs() <= 1e-6 * second, "first-order change {} against second-order {second}", 0.5 * (plus - minus));
+                }
+            }
+        }
     }
 }
