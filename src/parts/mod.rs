@@ -126,6 +126,18 @@
 //!   mirror, which the leg has by construction (the discretisation's floor), with edges of 0.21
 //!   and 0.11 on a leg of length 1; a knee of 1.0 rad instead of 0.6 gives 0.079 / 0.065 and
 //!   0.062 / 0.039. The front↔hind truth is a few hundredths of an edge from the flipped map.
+//! - **Session 29, measured and dropped** (the table above reproduced first). On the posed
+//!   directed quadruped at 10k the missing pair (legs 0 ↔ 2) fails twice: its tips' growth
+//!   profiles disagree at the first step (ball areas 0.023 and 0.016 within 0.075: a tip on a
+//!   toe against one on a pad), and once a slack for the ball's boundary ring (`π r h̄`,
+//!   `h̄` the mean edge) lets them agree, the map grown is the flipped one and agrees with the
+//!   shape's wrong front↔back map on 228 of 336 vertices, so it is dropped as carried by it.
+//!   That slack found no pair more anywhere and added spurious ones (lopsided blob at 10k: 5 →
+//!   12 partial symmetries). Choosing between the two ring-pair variants by far references (the
+//!   spread of `d(R, x) − d(R, T x)` over the region, `R` the other tips: a translation in the
+//!   body's frame keeps it constant) did not separate them either (0.114 against 0.108, 0.078
+//!   against 0.078 on the two pairs that had references) and lost a pair at 2.5k (noisy seed
+//!   3: 6 → 4 of 12) while gaining one on the noisy spikes (0 → 2 of 6).
 
 use crate::maps::geodesic::EdgeGraph;
 use crate::maps::DenseMap;
