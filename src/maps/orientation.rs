@@ -22,7 +22,10 @@
 //! is quadratic in `C`, so its minimiser is exact least squares: the normal equations in
 //! `vec(C)` (`K² = 900` unknowns) are assembled from Kronecker products
 //! (`vec(C X) = (Xᵀ ⊗ I) vec C`, `vec(X C) = (I ⊗ X) vec C`) and solved by Cholesky, instead
-//! of pyFM's iterative L-BFGS. Weights and normalisers `τ` are pyFM's (`w = 1, 10⁻², 10⁻¹,
+//! of pyFM's iterative L-BFGS. The sum of Kronecker products is one matrix product (`solve`:
+//! under 0.01 s for `K = 30` and 12 descriptors, 0.06 s entry by entry), and the detection
+//! makes the map once, for all its searches ([`crate::detect`]: it does not depend on the
+//! samples). Weights and normalisers `τ` are pyFM's (`w = 1, 10⁻², 10⁻¹,
 //! 1`; each `τ` the term's scale, so that the weights are relative), with the plain
 //! eigenvalue-difference Laplacian term. The identity satisfies every term but the last, which
 //! is what keeps the solution away from it. The map's point map is refined by ZoomOut and
