@@ -24,7 +24,7 @@
 //! (`vec(C X) = (Xᵀ ⊗ I) vec C`, `vec(X C) = (I ⊗ X) vec C`) and solved by Cholesky, instead
 //! of pyFM's iterative L-BFGS. The sum of Kronecker products is one matrix product (`solve`:
 //! under 0.01 s for `K = 30` and 12 descriptors, 0.06 s entry by entry), and the detection
-//! makes the map once, for all its searches ([`crate::detect`]: it does not depend on the
+//! makes the map once, for all its searches ([`mod@crate::detect`]: it does not depend on the
 //! samples). Weights and normalisers `τ` are pyFM's (`w = 1, 10⁻², 10⁻¹,
 //! 1`; each `τ` the term's scale, so that the weights are relative), with the plain
 //! eigenvalue-difference Laplacian term. The identity satisfies every term but the last, which
