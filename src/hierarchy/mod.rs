@@ -145,10 +145,7 @@ impl Hierarchy {
     /// shares a position with another seed that took its vertices) gets the smallest cell's,
     /// so every mass stays positive.
     pub fn cell_mass(&self, fine_mass: &[f64], total: f64) -> Vec<f64> {
-        let mut mass = vec![0.0f64; self.seeds.len()];
-        for (&c, &m) in self.owner.iter().zip(fine_mass) {
-            mass[c as usize] += m;
-        }
+        let mut mass = crate::maps::proxy::cell_sums(&self.owner, fine_mass, self.seeds.len());
         let smallest = mass.iter().copied().filter(|&m| m > 0.0).fold(f64::INFINITY, f64::min);
         if smallest.is_finite() {
             mass.iter_mut().filter(|m| !(**m > 0.0)).for_each(|m| *m = smallest);

@@ -107,10 +107,7 @@ impl Proxy {
             norms2: seeds.iter().map(|&s| emb.norms2[s]).collect(),
         };
         let sub_wks = Mat::from_fn(m, wks.ncols(), |c, e| wks[(seeds[c], e)]);
-        let mut mass = vec![0.0; m];
-        for v in 0..n {
-            mass[owner[v] as usize] += basis.mass[v];
-        }
+        let mass = cell_sums(&owner, &basis.mass, m);
         let sub_basis = Eigenbasis {
             evals: basis.evals.clone(),
             evecs: Mat::from_fn(m, basis.k(), |c, i| basis.evecs[(seeds[c], i)]),
@@ -138,6 +135,17 @@ impl Proxy {
     pub fn lift(&self, positions: &[[f64; 3]], m: &DenseMap) -> DenseMap {
         lift(&self.seeds, &self.owner, &self.positions, &self.adjacency, &self.mesh_adjacency, positions, m)
     }
+}
+
+/// `values` (one per mesh vertex) summed over each of the `cells` cells (`owner[v]` the cell of
+/// vertex `v`), in vertex order: a cell's mass from the mesh's lumped mass, here and on the
+/// hierarchy's coarse mesh ([`crate::hierarchy::Hierarchy::cell_mass`]).
+pub(crate) fn cell_sums(owner: &[u32], values: &[f64], cells: usize) -> Vec<f64> {
+    let mut sums = vec![0.0f64; cells];
+    for (&c, &x) in owner.iter().zip(values) {
+        sums[c as usize] += x;
+    }
+    sums
 }
 
 /// The map `m` of a proxy (vertex `c` at mesh vertex `seeds[c]`, at `seed_positions[c]`, with
