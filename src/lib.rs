@@ -39,6 +39,7 @@ pub mod mesh;
 pub mod output;
 mod parallel;
 pub mod parts;
+mod random;
 pub mod sampling;
 pub mod shapes;
 pub mod spectral;

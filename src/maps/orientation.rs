@@ -330,13 +330,10 @@ mod tests {
     }
 
     /// Random operators of `K = 6` functions and 3 descriptors (`D_f` symmetric, as
-    /// `Φᵀ M diag(f) Φ` is), from a small linear congruential generator.
+    /// `Φᵀ M diag(f) Φ` is), uniform in `[−1, 1)` from the crate's generator.
     fn random_operators(seed: u64) -> Operators {
-        let mut state = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-        let mut next = move || {
-            state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-            (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        };
+        let mut rng = crate::random::SplitMix::new(seed);
+        let mut next = move || rng.unit() * 2.0 - 1.0;
         let (k, p) = (6, 3);
         let a = Mat::<f64>::from_fn(k, p, |_, _| next());
         let d = (0..p)

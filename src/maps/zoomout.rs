@@ -296,11 +296,8 @@ mod tests {
     /// ≥ ½ become ±1, the others stay; an orthogonal involution is left as it is.
     #[test]
     fn the_involution_part_keeps_matched_directions_only() {
-        let mut state = 7u64;
-        let mut rand = || {
-            state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-            (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-        };
+        let mut rng = crate::random::SplitMix::new(7);
+        let mut rand = || rng.unit() - 0.5;
         let k = 8;
         // Q: a Householder reflection, orthogonal and symmetric.
         let u: Vec<f64> = (0..k).map(|_| rand()).collect();

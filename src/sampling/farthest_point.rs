@@ -21,11 +21,8 @@ pub struct Samples {
 pub fn farthest_point(emb: &BiharmonicEmbedding, count: usize, seed: u64) -> Samples {
     let n = emb.len();
     let count = count.min(n).max(1);
-    // SplitMix64 step for the random start.
-    let mut z = seed.wrapping_add(0x9E37_79B9_7F4A_7C15);
-    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-    let first = ((z ^ (z >> 31)) % n as u64) as usize;
+    // The random start: the first output of the seed's generator.
+    let first = (crate::random::SplitMix::new(seed).next_u64() % n as u64) as usize;
     let mut samples = Samples { vertices: vec![first], cell: vec![0usize; n], radius: vec![f64::INFINITY; n] };
     samples.absorb(emb, first);
     samples.extend(emb, count);

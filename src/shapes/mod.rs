@@ -300,14 +300,8 @@ pub fn creature_with(level: u32, body: [f64; 3], limbs: &[Limb], directed: &[Opt
     if noise > 0.0 {
         let diag = mesh.bbox_diagonal();
         let normals = vertex_normals(&mesh);
-        let mut state = seed ^ 0xD1B5_4A32_D192_ED03;
-        let mut next = || {
-            state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
-            let mut z = state;
-            z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-            ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rng = crate::random::SplitMix::new(seed ^ 0xD1B5_4A32_D192_ED03);
+        let mut next = || rng.unit();
         for (p, nrm) in mesh.vertices.iter_mut().zip(&normals) {
             let (a, b) = (next().max(1e-300), next());
             let g = (-2.0 * a.ln()).sqrt() * (2.0 * std::f64::consts::PI * b).cos();

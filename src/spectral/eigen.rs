@@ -47,6 +47,7 @@ use std::time::Instant;
 use super::factor::ShiftedCholesky;
 use super::kernels::{self, Lanes, LANES};
 use super::SpectralError;
+use crate::random::SplitMix;
 
 /// Below this many vertices the dense solver is used (Lanczos is faster above ~300 vertices, and
 /// more accurate on badly conditioned meshes: the dense path loses ε‖M^{-1/2}LM^{-1/2}‖).
@@ -192,7 +193,7 @@ pub fn eigen(
     let cap = ncv + 2 * b;
     let mut V = Mat::<f64>::zeros(n, cap);
     let mut H = Mat::<f64>::zeros(cap, cap);
-    let mut rng = SplitMix(params.seed ^ 0x9E37_79B9_7F4A_7C15);
+    let mut rng = SplitMix::new(params.seed ^ 0x9E37_79B9_7F4A_7C15);
     for j in 0..b {
         for x in V.col_as_slice_mut(j) {
             *x = rng.normal();
@@ -757,22 +758,3 @@ pub fn dense_eigen(lap: &CsMat<f64>, mass: &[f64], k: usize) -> Result<(Vec<f64>
     Ok((evals, X, info))
 }
 
-/// Small deterministic generator (SplitMix64) with Box–Muller normals.
-struct SplitMix(u64);
-
-impl SplitMix {
-    fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-    fn uniform(&mut self) -> f64 {
-        ((self.next_u64() >> 11) as f64 + 0.5) / (1u64 << 53) as f64
-    }
-    fn normal(&mut self) -> f64 {
-        let (u, v) = (self.uniform(), self.uniform());
-        (-2.0 * u.ln()).sqrt() * (2.0 * std::f64::consts::PI * v).cos()
-    }
-}
