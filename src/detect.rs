@@ -1061,7 +1061,7 @@ fn search(shared: &Shared<'_>, params: &Params, seed: u64, timings: &mut Timings
     let verdict = |m: &maps::DenseMap| ctx.verdict(&m.map).unwrap_or_default();
     let mut found: Vec<Found> = Vec::new();
     let mut ranked: Vec<&crate::voting::Candidate> = candidates.iter().collect();
-    ranked.sort_by(|a, b| (b.pairs.len() * b.support).cmp(&(a.pairs.len() * a.support)));
+    ranked.sort_by_key(|c| std::cmp::Reverse(c.pairs.len() * c.support));
     ranked.truncate(params.max_candidates);
     // Phase 1: a profile map per candidate, ranked by quality (region, then distortion), so
     // the best version of each symmetry is refined first and absorbs its variants.

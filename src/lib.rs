@@ -19,10 +19,13 @@
 //! (biharmonic), [`sampling`] (farthest points), [`voting`] (correspondence space voting),
 //! [`maps`] (dense maps, ZoomOut), [`parts`] (partial symmetries between repeated parts,
 //! experimental), [`characterize`] (complexity, order), [`cluster`] (groups);
-//! [`detect`] runs them all. [`output`] writes JSON, PLY and reports, [`eval`] scores maps
+//! [`detect()`] runs them all. [`output`] writes JSON, PLY and reports, [`eval`] scores maps
 //! against ground truth, and [`shapes`] generates test shapes with known symmetry.
 
 #![warn(missing_docs)]
+// The module docs are for developers and cite private constants and helpers by link: read
+// them with `cargo doc --document-private-items`.
+#![allow(rustdoc::private_intra_doc_links)]
 
 pub mod characterize;
 pub mod cluster;

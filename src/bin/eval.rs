@@ -93,8 +93,11 @@ fn set_param(p: &mut Params, kv: &str) -> Result<(), String> {
     Ok(())
 }
 
+/// A named known symmetry: each covered vertex with its acceptable images.
+type Truth = (String, Vec<(usize, Vec<usize>)>);
+
 /// One detection, scored against each of several known symmetries (a row each).
-fn score_all(mesh: &Mesh, truths: &[(String, Vec<(usize, Vec<usize>)>)], params: &Params) -> Vec<Row> {
+fn score_all(mesh: &Mesh, truths: &[Truth], params: &Params) -> Vec<Row> {
     let t = Instant::now();
     let det = detect(mesh, params, &mut |_| true);
     let seconds = t.elapsed().as_secs_f64();
@@ -455,7 +458,7 @@ fn main() {
         // The star: every one of its 19 symmetries, each scored against the best detected map.
         if only.as_ref().is_none_or(|o| "star".contains(o.as_str())) {
             let c = shapes::star(5, 5);
-            let truths: Vec<(String, Vec<(usize, Vec<usize>)>)> = shapes::star_symmetries(&c, 5)
+            let truths: Vec<Truth> = shapes::star_symmetries(&c, 5)
                 .into_iter()
                 .map(|(name, map)| (format!("star, 5 arms: {name}"), map.iter().enumerate().map(|(v, &w)| (v, vec![w as usize])).collect()))
                 .collect();

@@ -1,4 +1,4 @@
-//! Point descriptors. The paper's good-voter test compares wave kernel signatures ([`wks`]);
+//! Point descriptors. The paper's good-voter test compares wave kernel signatures ([`mod@wks`]);
 //! the geodesic polish also compares band-limited mean curvature ([`curvature`]).
 
 pub mod curvature;

@@ -1,4 +1,4 @@
-//! Intrinsic distance. The paper uses the biharmonic distance ([`biharmonic`]) for sampling and
+//! Intrinsic distance. The paper uses the biharmonic distance ([`mod@biharmonic`]) for sampling and
 //! voting: cheap from the eigenbasis, smooth, and robust to noise.
 
 pub mod biharmonic;

@@ -144,6 +144,8 @@ impl Hierarchy {
     /// eigenbasis's mass matrix (module docs, step 3). A cell that holds no area (its seed
     /// shares a position with another seed that took its vertices) gets the smallest cell's,
     /// so every mass stays positive.
+    // `!(x > y)` on purpose: also true when either side is NaN.
+    #[allow(clippy::neg_cmp_op_on_partial_ord)]
     pub fn cell_mass(&self, fine_mass: &[f64], total: f64) -> Vec<f64> {
         let mut mass = crate::maps::proxy::cell_sums(&self.owner, fine_mass, self.seeds.len());
         let smallest = mass.iter().copied().filter(|&m| m > 0.0).fold(f64::INFINITY, f64::min);

@@ -89,7 +89,7 @@ pub struct MapParams {
     /// Further passes of the polish given to each search's strongest symmetry once the search
     /// has ranked its maps (default 8; the `polish` passes of every map come first, and with
     /// `polish` = 0 there are none of either). See
-    /// [`crate::detect`], "Further polish of the strongest symmetry".
+    /// [`mod@crate::detect`], "Further polish of the strongest symmetry".
     pub final_polish: usize,
     /// Anchor candidates of the polish: this many farthest-point samples (default 128, twice
     /// voting's; a superset of them). On posed TOSCA 64 → 128 gave 85.0 → 86.4% mean acc@0.05;

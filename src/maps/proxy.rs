@@ -286,8 +286,8 @@ pub(crate) fn geodesic_farthest_points(graph: &EdgeGraph, first: &[usize], size:
     };
     grow(first, &mut seeds, &mut dist, &mut owner, &mut far);
     // Unreached vertices (other components) are candidates at infinite distance.
-    for v in 0..n {
-        if dist[v] == f64::INFINITY {
+    for (v, &d) in dist.iter().enumerate() {
+        if d == f64::INFINITY {
             far.push((f64::INFINITY.to_bits(), v as u32));
         }
     }

@@ -22,7 +22,7 @@
 //! BCICP, for a self-map) and `C² = I` holds on every direction the map matches, at the cost
 //! of one `k × k` eigendecomposition. Measured over shared/data (116 shapes, best / first
 //! acc@0.05, `bench/compare_eval.py`, session 13, with the order-1 filter of
-//! [`crate::detect`]), against plain ZoomOut: TOSCA 83.2 → 84.1 / 83.2 → 84.1, FAUST
+//! [`mod@crate::detect`]), against plain ZoomOut: TOSCA 83.2 → 84.1 / 83.2 → 84.1, FAUST
 //! 87.7 → 88.7 / 87.0 → 87.8, SHREC'16 54.6 → 54.6 / 42.3 → 42.6, KIDS 60k 87.4 → 90.1 /
 //! 87.4 → 90.1%. Variants measured the same way (`docs/accuracy.md`): every eigenvalue to ±1
 //! (the nearest orthogonal involution) gave 83.2 / 81.5% over all against 82.8 / 80.9%, but a

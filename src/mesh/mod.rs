@@ -220,7 +220,7 @@ impl fmt::Display for MeshError {
 impl std::error::Error for MeshError {}
 
 /// A validated triangle mesh with finite coordinates: one connected surface, or several
-/// ([`ComponentPolicy::Each`]; [`Mesh::components`] splits them).
+/// ([`ComponentPolicy::Each`]; [`Mesh::split_components`] splits them).
 #[derive(Clone, Debug)]
 pub struct Mesh {
     /// `(n, 3)` positions of the processed vertices.
@@ -254,6 +254,8 @@ impl Mesh {
     }
 
     /// Validates a mesh given as vertex and triangle lists.
+    // `!(x > y)` on purpose: also true when either side is NaN.
+    #[allow(clippy::neg_cmp_op_on_partial_ord)]
     pub fn new(vertices: Vec<[f64; 3]>, triangles: Vec<[u32; 3]>, params: &MeshParams) -> Result<Mesh, MeshError> {
         let n = vertices.len();
         let m = triangles.len();

@@ -380,7 +380,7 @@ fn anchor_pairs(graph: &EdgeGraph, a: &Region, b: &Region, radius: f64, params: 
     let ring_radius = 0.5 * radius;
     let width = (2.0 * edge).max(0.05 * radius);
     let ring = |r: &Region| -> Vec<usize> { (0..r.len()).filter(|&i| (r.from_tip[i] - ring_radius).abs() <= width).collect() };
-    let (ring_a, ring_b) = (ring(&a), ring(&b));
+    let (ring_a, ring_b) = (ring(a), ring(b));
     if ring_a.len() < 3 || ring_b.len() < 3 {
         return None;
     }
@@ -495,7 +495,7 @@ fn grow_map(graph: &EdgeGraph, weights: &[f64], a: &Region, b: &Region, anchored
     let Anchored { pairs, cols_a: cols_a_all, cols_b } = anchored;
     let window = 0.25 * radius;
     let (forward, fwd_mismatch) = forward;
-    let (backward, bwd_mismatch) = dense_map(&cols_b, &cols_a_all, &b.from_tip, &a.from_tip, window);
+    let (backward, bwd_mismatch) = dense_map(cols_b, cols_a_all, &b.from_tip, &a.from_tip, window);
     let accept = params.accept * scale;
     // A vertex is kept where the map fits (mismatch) and the round trip A → B → A comes back
     // near it (its distances to A's anchors change by at most `accept` on average): a map
@@ -511,13 +511,13 @@ fn grow_map(graph: &EdgeGraph, weights: &[f64], a: &Region, b: &Region, anchored
         }
         used > 0 && sum / used as f64 <= accept
     };
-    let keep_a: Vec<bool> = (0..a.len()).map(|x| fwd_mismatch[x] <= accept && back_ok(x, &forward, &backward, &cols_a_all)).collect();
-    let keep_b: Vec<bool> = (0..b.len()).map(|y| bwd_mismatch[y] <= accept && back_ok(y, &backward, &forward, &cols_b)).collect();
-    let region_a = grow(graph, &a, &keep_a);
-    let region_b = grow(graph, &b, &keep_b);
+    let keep_a: Vec<bool> = (0..a.len()).map(|x| fwd_mismatch[x] <= accept && back_ok(x, &forward, &backward, cols_a_all)).collect();
+    let keep_b: Vec<bool> = (0..b.len()).map(|y| bwd_mismatch[y] <= accept && back_ok(y, &backward, &forward, cols_b)).collect();
+    let region_a = grow(graph, a, &keep_a);
+    let region_b = grow(graph, b, &keep_b);
     // An involution on A ∪ B: the two regions have about the same area.
     let area = |r: &Region, region: &[usize]| region.iter().map(|&x| weights[r.vertices[x]]).sum::<f64>();
-    let (area_a, area_b) = (area(&a, &region_a), area(&b, &region_b));
+    let (area_a, area_b) = (area(a, &region_a), area(b, &region_b));
     if area_a.min(area_b) < params.balance * area_a.max(area_b) {
         return None;
     }

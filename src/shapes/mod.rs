@@ -267,8 +267,8 @@ pub fn creature_with(level: u32, body: [f64; 3], limbs: &[Limb], directed: &[Opt
             let t = theta / l.cap;
             if t < 1.0 {
                 let grow = l.length * (1.0 - smoothstep(t));
-                for d in 0..3 {
-                    p[d] += grow * l.axis[d];
+                for (x, a) in p.iter_mut().zip(l.axis) {
+                    *x += grow * a;
                 }
                 if let Some(Some(dir)) = directed.get(j) {
                     let base = [body[0] * l.direction[0], body[1] * l.direction[1], body[2] * l.direction[2]];
@@ -390,8 +390,8 @@ impl Creature {
         let vs: Vec<usize> = (0..self.rest.len()).filter(|&v| self.limb[v] == l).collect();
         let mut c = [0.0; 3];
         for &v in &vs {
-            for d in 0..3 {
-                c[d] += self.rest[v][d] / vs.len() as f64;
+            for (x, r) in c.iter_mut().zip(self.rest[v]) {
+                *x += r / vs.len() as f64;
             }
         }
         (vs, c)

@@ -502,6 +502,8 @@ impl Workspace<'_> {
         r_total
     }
 
+    // `!(x > y)` on purpose: also true when either side is NaN.
+    #[allow(clippy::neg_cmp_op_on_partial_ord)]
     fn orthonormalize_block_mgs(&self, v: &mut Mat<f64>, j0: usize, b: usize, rng: &mut SplitMix) -> Mat<f64> {
         let mass = self.mass;
         let mut r = Mat::<f64>::zeros(b, b);

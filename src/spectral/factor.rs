@@ -2,7 +2,7 @@
 //!
 //! The factorisation is faer's supernodal `A = P Lᶜ Lᶜᵀ Pᵀ` with an AMD ordering `P`. The
 //! *solve* is ours: shift-invert Lanczos spends half of its time in `Lᶜ Lᶜᵀ x = b` with a block of
-//! [`LANES`] right-hand sides, and faer's generic supernodal solve (a dense triangular solve and
+//! [`LANES`](super::kernels::LANES) right-hand sides, and faer's generic supernodal solve (a dense triangular solve and
 //! a small gemm per supernode, column-major right-hand sides) runs at ~4 GFlop/s on surface
 //! meshes, whose supernodes are small. Here the right-hand sides are *interleaved*: row `i` of
 //! the block is one `[f64; 8]`, so every entry `ℓᵢⱼ` of the factor costs one 8-wide
@@ -23,7 +23,7 @@ use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{Par, Side};
 use sprs::CsMat;
 
-use super::kernels::{dispatch, vecs, vecs_mut, Kernel, Lanes, LANES};
+use super::kernels::{dispatch, vecs, vecs_mut, Kernel, Lanes};
 use super::SpectralError;
 
 /// One supernode: columns `start .. start + width` of the permuted factor, its off-diagonal
@@ -101,7 +101,7 @@ impl ShiftedCholesky {
         self.values.len()
     }
 
-    /// Solves `(L + σM) X = B` in place for an interleaved block `x` (`n` rows of [`LANES`]
+    /// Solves `(L + σM) X = B` in place for an interleaved block `x` (`n` rows of [`LANES`](super::kernels::LANES)
     /// right-hand sides). `work` is scratch, resized as needed.
     pub fn solve(&self, x: &mut [Lanes], work: &mut Vec<Lanes>) {
         assert_eq!(x.len(), self.n);
@@ -141,8 +141,8 @@ impl Kernel for Sweeps<'_> {
                 let col = &values[s.vals + j * h..s.vals + (j + 1) * h];
                 let inv = 1.0 / col[j];
                 let mut y = x[s.start + j];
-                for t in 0..LANES {
-                    y[t] *= inv;
+                for yt in &mut y {
+                    *yt *= inv;
                 }
                 x[s.start + j] = y;
                 for i in j + 1..s.width {
@@ -166,8 +166,8 @@ impl Kernel for Sweeps<'_> {
                     sub_scaled(&mut acc, col[i], &x[s.start + i]);
                 }
                 let inv = 1.0 / col[j];
-                for t in 0..LANES {
-                    acc[t] *= inv;
+                for a in &mut acc {
+                    *a *= inv;
                 }
                 x[s.start + j] = acc;
             }
@@ -212,6 +212,7 @@ fn shifted_matrix(lap: &CsMat<f64>, mass: &[f64], sigma: f64) -> (Vec<usize>, Ve
 mod tests {
     use super::*;
     use crate::shapes;
+    use crate::spectral::kernels::LANES;
     use crate::spectral::{cotan, mass};
 
     /// The interleaved solve inverts `L + σM`: `‖(L + σM) x − b‖ / ‖b‖` at rounding level.
