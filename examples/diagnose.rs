@@ -155,7 +155,7 @@ pub fn experiments(mesh: &Mesh, pairs: &[(usize, Vec<usize>)]) {
     let true_map = maps::DenseMap::from_image(start);
     // One polish pass from the true map: every sample pair is right, so this is the geodesic
     // dense matching alone.
-    let mut geodesics = maps::geodesic::Geodesics::new(&ctx);
-    let polished = maps::geodesic::polish(&ctx, &mut geodesics, &true_map, &samples, &params.maps);
+    let geodesics = maps::geodesic::Geodesics::new(&ctx);
+    let polished = maps::geodesic::polish(&ctx, &geodesics, &true_map, &samples, &params.maps);
     println!("geodesic profile map from the true sample pairs: {}", acc(&polished.image));
 }

@@ -21,6 +21,9 @@
 //! candidate grown within a neighbourhood of a tip pair holds the pair and its reverse only,
 //! too few for a map. Partial symmetries of this kind need denser samples on the parts (or
 //! the paper's local regions with their own eigenbases).
+
+// The part × part tables read best indexed by both parts.
+#![allow(clippy::needless_range_loop)]
 use intrinsym::shapes::{self, Limb};
 use intrinsym::{detect, eval, Params};
 
@@ -114,7 +117,7 @@ pub fn diagnose(c: &shapes::Creature) {
     let per: Vec<usize> = (0..7).map(|l| sv.iter().filter(|&&v| c.limb[v].min(6) == l.min(6) && (l < 6 || c.limb[v] == usize::MAX)).count()).collect();
     println!("samples per limb (0-3 legs, 4 head, 5 tail, 6 body): {per:?}; candidates {}", cands.len());
     let mut ranked: Vec<_> = cands.iter().enumerate().collect();
-    ranked.sort_by(|a, b| (b.1.pairs.len() * b.1.support).cmp(&(a.1.pairs.len() * a.1.support)));
+    ranked.sort_by_key(|c| std::cmp::Reverse(c.1.pairs.len() * c.1.support));
     for (rank, (_, cand)) in ranked.iter().enumerate() {
         let mut legmap = [[0usize; 5]; 5];
         for &(a, b) in &cand.pairs {

@@ -69,8 +69,7 @@ mod tests {
     #[test]
     fn wks_has_unit_mean_per_energy_and_is_positive() {
         let mesh = shapes::bumpy_torus(14);
-        let mut p = EigenParams::default();
-        p.k = 30;
+        let p = EigenParams { k: 30, ..Default::default() };
         let basis = Eigenbasis::compute(&mesh, &p).unwrap();
         let d = wks(&basis, &WksParams::default());
         assert_eq!(d.ncols(), 100);
@@ -87,8 +86,7 @@ mod tests {
         // eigenvectors in a degenerate eigenspace are arbitrary: WKS, a sum over whole
         // eigenspaces when σ spans them, must still agree at mirror vertices.
         let mesh = shapes::icosphere(3);
-        let mut p = EigenParams::default();
-        p.k = 36;
+        let p = EigenParams { k: 36, ..Default::default() };
         let basis = Eigenbasis::compute(&mesh, &p).unwrap();
         let d = wks(&basis, &WksParams::default());
         let mirror = shapes::mirror_map(&mesh, 0);

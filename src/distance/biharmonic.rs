@@ -117,8 +117,7 @@ mod tests {
     #[test]
     fn is_a_metric_and_matches_pairwise_formula() {
         let mesh = shapes::bumpy_torus(12);
-        let mut p = EigenParams::default();
-        p.k = 40;
+        let p = EigenParams { k: 40, ..Default::default() };
         let basis = Eigenbasis::compute(&mesh, &p).unwrap();
         let emb = biharmonic(&basis);
         let src = [0usize, 17, 100, 250];

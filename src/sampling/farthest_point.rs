@@ -63,8 +63,7 @@ mod tests {
     #[test]
     fn samples_are_spread_deterministic_and_cells_are_nearest() {
         let mesh = shapes::bumpy_torus(14);
-        let mut p = EigenParams::default();
-        p.k = 30;
+        let p = EigenParams { k: 30, ..Default::default() };
         let basis = Eigenbasis::compute(&mesh, &p).unwrap();
         let emb = biharmonic(&basis);
         let a = farthest_point(&emb, 20, 7);
