@@ -62,10 +62,10 @@
 //!
 //! (The blob's row counts the stage's own partial symmetries, re-measured in session 29: at 10k
 //! it adds 3 to the 2 partial maps the global stages report on the blob's nearly symmetric body,
-//! where session 12 measured 1.) Without the stage the directed quadruped has 4 of 12 at both sizes (the left↔right pairs,
-//! from the mirror) and the spikes 0 of 6. The stage's time: 0.1–0.4 s at 2.5k and 0.3–1.1 s
-//! at 10k (10–40% of a detection; issue 15 allows 30%). What is not right yet, for the next
-//! engineer:
+//! where session 12 measured 1.) Without the stage the directed quadruped has 4 of 12 at both
+//! sizes (the left↔right pairs, from the mirror) and the spikes 0 of 6. The stage's time:
+//! 0.1–0.4 s at 2.5k and 0.3–1.1 s at 10k (10–40% of a detection; issue 15 allows 30%). What
+//! is not right yet, for the next engineer:
 //! - **Which of two flipped maps.** A leg whose only front/back asymmetry is its toe fits its
 //!   flipped map (front of one paw onto the back of the other) almost as well as the right
 //!   one; three anchors near the tip cannot tell them apart, so the best and the best flipped

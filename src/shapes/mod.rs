@@ -301,9 +301,8 @@ pub fn creature_with(level: u32, body: [f64; 3], limbs: &[Limb], directed: &[Opt
         let diag = mesh.bbox_diagonal();
         let normals = vertex_normals(&mesh);
         let mut rng = crate::random::SplitMix::new(seed ^ 0xD1B5_4A32_D192_ED03);
-        let mut next = || rng.unit();
         for (p, nrm) in mesh.vertices.iter_mut().zip(&normals) {
-            let (a, b) = (next().max(1e-300), next());
+            let (a, b) = (rng.unit().max(1e-300), rng.unit());
             let g = (-2.0 * a.ln()).sqrt() * (2.0 * std::f64::consts::PI * b).cos();
             for d in 0..3 {
                 p[d] += noise * diag * g * nrm[d];

@@ -2,9 +2,9 @@
 //!
 //! The factorisation is faer's supernodal `A = P Lᶜ Lᶜᵀ Pᵀ` with an AMD ordering `P`. The
 //! *solve* is ours: shift-invert Lanczos spends half of its time in `Lᶜ Lᶜᵀ x = b` with a block of
-//! [`LANES`](super::kernels::LANES) right-hand sides, and faer's generic supernodal solve (a dense triangular solve and
-//! a small gemm per supernode, column-major right-hand sides) runs at ~4 GFlop/s on surface
-//! meshes, whose supernodes are small. Here the right-hand sides are *interleaved*: row `i` of
+//! [`LANES`](super::kernels::LANES) right-hand sides, and faer's generic supernodal solve (a
+//! dense triangular solve and a small gemm per supernode, column-major right-hand sides) runs
+//! at ~4 GFlop/s on surface meshes, whose supernodes are small. Here the right-hand sides are *interleaved*: row `i` of
 //! the block is one `[f64; 8]`, so every entry `ℓᵢⱼ` of the factor costs one 8-wide
 //! multiply-subtract on two contiguous rows, the factor streams through memory once per sweep,
 //! and no kernel is called per supernode. Measured at 50k vertices (3.9M factor entries): 3.5 →
@@ -101,8 +101,8 @@ impl ShiftedCholesky {
         self.values.len()
     }
 
-    /// Solves `(L + σM) X = B` in place for an interleaved block `x` (`n` rows of [`LANES`](super::kernels::LANES)
-    /// right-hand sides). `work` is scratch, resized as needed.
+    /// Solves `(L + σM) X = B` in place for an interleaved block `x` (`n` rows of
+    /// [`LANES`](super::kernels::LANES) right-hand sides). `work` is scratch, resized as needed.
     pub fn solve(&self, x: &mut [Lanes], work: &mut Vec<Lanes>) {
         assert_eq!(x.len(), self.n);
         work.clear();
