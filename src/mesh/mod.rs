@@ -16,7 +16,7 @@
 //! | coincident vertices (an STL-style triangle soup, a seam split by duplicated vertices) | **welded** ([`MeshParams::weld`], tolerance [`WELD_REL`] of the bounding-box diagonal), counted in [`MeshInfo::welded_vertices`]; results give a welded vertex the map of the vertex it joined |
 //! | zero-area (collinear or collapsed) triangles | **kept** and counted in [`MeshInfo::degenerate_triangles`]: the Laplacian is built on intrinsically mollified edge lengths (Sharp & Crane 2020), so they get a tiny positive area and finite cotangents; dropping them would punch holes |
 //! | every triangle degenerate (zero total area) | error [`MeshError::Degenerate`] |
-//! | vertices used by no triangle | **ignored** (not part of the computation; results mark them "no image", confidence 0), counted in [`MeshInfo::isolated_vertices`] |
+//! | vertices used by no triangle | **ignored**, wherever they lie (not part of the computation, nor of the scale, the welding tolerance or the outlier test; results mark them "no image", confidence 0), counted in [`MeshInfo::isolated_vertices`] |
 //! | several connected components | by default **every component of at least [`MIN_COMPONENT_SHARE`] of the largest one's area** is kept ([`ComponentPolicy::Each`]; smaller ones are reported as ignored vertices); detection processes each kept component on its own ([`Mesh::split_components`]) and maps congruent components onto each other (`crate::maps::congruent`). [`ComponentPolicy::Largest`] keeps the largest only; [`ComponentPolicy::Reject`] makes it error [`MeshError::Disconnected`]. Intrinsic symmetry is defined per connected surface: the spectrum of a disconnected surface mixes the components' spectra, so no eigenbasis is ever computed on several components at once |
 //!
 //! Polygon faces in files are fan-triangulated by the readers in [`io`]; vertex indices in
@@ -278,16 +278,21 @@ impl Mesh {
                 return Err(MeshError::RepeatedIndex { triangle: ti });
             }
         }
+        // Vertices used by no triangle are ignored (module docs), so they set neither the
+        // scale, nor the welding tolerance, nor the outlier test: one stray point far away
+        // made the welding tolerance so large that it welded an open mesh's boundary together,
+        // one at another scale made every triangle degenerate (session 31).
+        let referenced = referenced_vertices(n, &triangles);
         // Areas, degeneracy and welding are measured on the coordinates divided by their
         // largest magnitude: a triangle's squared-area arithmetic goes to the fourth power of
         // the coordinates, which overflows from 1e77 and underflows below 1e-77 (issue 16,
         // item 1).
-        let (unit, unit_vertices) = unit_scaled(&vertices);
+        let (unit, unit_vertices) = unit_scaled(&vertices, &referenced);
         // The sorted edge keys serve welding (boundary edges) and the manifold check.
         let keys = sorted_edge_keys(&triangles);
-        let (triangles, welded, collapsed_triangles) = if params.weld { weld(&unit_vertices, triangles, &keys) } else { (triangles, Vec::new(), 0) };
+        let (triangles, welded, collapsed_triangles) = if params.weld { weld(&unit_vertices, &referenced, triangles, &keys) } else { (triangles, Vec::new(), 0) };
         if triangles.is_empty() {
-            return Err(outlier(&vertices).unwrap_or(MeshError::Degenerate));
+            return Err(outlier(&vertices, &referenced).unwrap_or(MeshError::Degenerate));
         }
         let (input_triangles, m) = (m, triangles.len());
         let keys = if welded.is_empty() { keys } else { sorted_edge_keys(&triangles) };
@@ -308,7 +313,7 @@ impl Mesh {
             .count();
         let total_area: f64 = areas.iter().sum();
         if !(total_area > 0.0) || degenerate == m {
-            return Err(outlier(&vertices).unwrap_or(MeshError::Degenerate));
+            return Err(outlier(&vertices, &referenced).unwrap_or(MeshError::Degenerate));
         }
 
         // Connected components of the triangles (through shared vertices).
@@ -317,12 +322,8 @@ impl Mesh {
             uf.union(t[0] as usize, t[1] as usize);
             uf.union(t[0] as usize, t[2] as usize);
         }
-        let mut used = vec![false; n];
-        for t in &triangles {
-            for &i in t {
-                used[i as usize] = true;
-            }
-        }
+        // Welding may have left some vertices unused.
+        let used = referenced_vertices(n, &triangles);
         let isolated = used.iter().filter(|&&u| !u).count() - welded.len();
         let mut comp_area = std::collections::HashMap::new();
         for (t, a) in triangles.iter().zip(&areas) {
@@ -469,7 +470,8 @@ impl Mesh {
     /// mesh in millimetres, in kilometres or far from the origin gives the same result (issue
     /// 16, item 1). Computed without overflow for any finite coordinates.
     pub fn normalized(&self) -> (Mesh, f64) {
-        let (unit, mut q) = unit_scaled(&self.vertices);
+        // Every vertex of a built mesh is used by a triangle.
+        let (unit, mut q) = unit_scaled(&self.vertices, &vec![true; self.vertices.len()]);
         let unit = if unit > 0.0 { unit } else { 1.0 };
         let (lo, hi) = bounding_box(&q);
         let centre = [0, 1, 2].map(|d| 0.5 * (lo[d] + hi[d]));
@@ -637,14 +639,27 @@ impl Mesh {
     }
 }
 
-/// The points divided by their largest coordinate magnitude (so every coordinate is in
-/// [−1, 1]) and that magnitude; 0 and the points unchanged when every coordinate is 0.
-fn unit_scaled(points: &[[f64; 3]]) -> (f64, Vec<[f64; 3]>) {
-    let unit = points.iter().flat_map(|p| p.iter()).fold(0.0f64, |m, x| m.max(x.abs()));
+/// Which of `n` vertices some triangle uses.
+fn referenced_vertices(n: usize, triangles: &[[u32; 3]]) -> Vec<bool> {
+    let mut used = vec![false; n];
+    for t in triangles {
+        for &i in t {
+            used[i as usize] = true;
+        }
+    }
+    used
+}
+
+/// The points divided by the largest coordinate magnitude of the `referenced` ones (so every
+/// coordinate of those is in [−1, 1]) and that magnitude; the other points (ignored by
+/// everything) are put at the origin. 0 and the points unchanged when every referenced
+/// coordinate is 0.
+fn unit_scaled(points: &[[f64; 3]], referenced: &[bool]) -> (f64, Vec<[f64; 3]>) {
+    let unit = points.iter().zip(referenced).filter(|(_, &r)| r).flat_map(|(p, _)| p.iter()).fold(0.0f64, |m, x| m.max(x.abs()));
     if unit == 0.0 {
         return (0.0, points.to_vec());
     }
-    (unit, points.iter().map(|p| p.map(|x| x / unit)).collect())
+    (unit, points.iter().zip(referenced).map(|(p, &r)| if r { p.map(|x| x / unit) } else { [0.0; 3] }).collect())
 }
 
 /// The corners `(lo, hi)` of the axis-aligned bounding box of `points`.
@@ -666,7 +681,7 @@ pub(crate) fn bounding_box(points: &[[f64; 3]]) -> ([f64; 3], [f64; 3]) {
 /// ([`sorted_edge_keys`]), which tell the boundary. Returns the triangles on the kept vertices
 /// without those that collapsed, the `(welded, kept)` pairs and the number of collapsed
 /// triangles.
-fn weld(q: &[[f64; 3]], triangles: Vec<[u32; 3]>, keys: &[u64]) -> (Vec<[u32; 3]>, Vec<(u32, u32)>, usize) {
+fn weld(q: &[[f64; 3]], referenced: &[bool], triangles: Vec<[u32; 3]>, keys: &[u64]) -> (Vec<[u32; 3]>, Vec<(u32, u32)>, usize) {
     // Only vertices on a boundary edge (an edge of one triangle) are welded: a seam's or a
     // triangle soup's copies lie on boundaries, while two coincident vertices inside closed
     // sheets are a self-contact (FAUST has a few), and gluing them would pinch the surface into
@@ -681,7 +696,7 @@ fn weld(q: &[[f64; 3]], triangles: Vec<[u32; 3]>, keys: &[u64]) -> (Vec<[u32; 3]
     if !on_boundary.iter().any(|&b| b) {
         return (triangles, Vec::new(), 0);
     }
-    let (lo, hi) = bounding_box(q);
+    let (lo, hi) = bounding_box(&q.iter().zip(referenced).filter(|(_, &r)| r).map(|(p, _)| *p).collect::<Vec<_>>());
     let diagonal = norm_sq(sub(hi, lo)).sqrt();
     let tol = WELD_REL * diagonal;
     if tol <= 0.0 {
@@ -770,12 +785,14 @@ impl std::hash::Hasher for CellHasher {
     }
 }
 
-/// The stray vertex of a mesh whose largest coordinate is more than 10¹² times the median
-/// vertex's (issue 16, item 14), if any.
-fn outlier(vertices: &[[f64; 3]]) -> Option<MeshError> {
+/// The stray vertex of a mesh, among the `referenced` ones, whose largest coordinate is more
+/// than 10¹² times the median referenced vertex's (issue 16, item 14), if any.
+fn outlier(vertices: &[[f64; 3]], referenced: &[bool]) -> Option<MeshError> {
     let magnitude = |p: &[f64; 3]| p.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-    let mut sizes: Vec<f64> = vertices.iter().map(magnitude).collect();
-    let (vertex, &largest) = sizes.iter().enumerate().max_by(|a, b| a.1.total_cmp(b.1))?;
+    let used: Vec<usize> = (0..vertices.len()).filter(|&v| referenced[v]).collect();
+    let mut sizes: Vec<f64> = used.iter().map(|&v| magnitude(&vertices[v])).collect();
+    let (at, &largest) = sizes.iter().enumerate().max_by(|a, b| a.1.total_cmp(b.1))?;
+    let vertex = used[at];
     let middle = sizes.len() / 2;
     let typical = *sizes.select_nth_unstable_by(middle, f64::total_cmp).1;
     (largest > 1e12 * typical).then_some(MeshError::Outlier { vertex, magnitude: largest, typical })
@@ -1116,6 +1133,27 @@ mod tests {
         assert_eq!(m.num_vertices(), 4);
         assert_eq!(m.input_index, vec![1, 2, 3, 4]);
         assert!(m.triangles.iter().flatten().all(|&i| i < 4));
+    }
+
+    /// An unreferenced vertex is ignored, wherever it lies: one far away did set the welding
+    /// tolerance (relative to the bounding box) and welded 41 boundary vertices of an open
+    /// sphere together, one at another scale than the mesh made every triangle degenerate.
+    #[test]
+    fn a_far_unreferenced_vertex_changes_nothing() {
+        let sphere = crate::shapes::icosphere(3);
+        let below = |t: &[u32; 3]| t.iter().map(|&i| sphere.vertices[i as usize][2]).sum::<f64>() < -0.9;
+        let open: Vec<[u32; 3]> = sphere.triangles.iter().filter(|t| !below(t)).copied().collect();
+        let alone = Mesh::new(sphere.vertices.clone(), open.clone(), &MeshParams::default()).unwrap();
+        assert_eq!(alone.info.welded_vertices, 0);
+        for (scale, stray) in [(1.0, 1e6), (1e-150, 1.0), (1.0, 1e300)] {
+            let mut v: Vec<[f64; 3]> = sphere.vertices.iter().map(|p| p.map(|x| x * scale)).collect();
+            v.push([stray, 0.0, 0.0]);
+            let m = Mesh::new(v, open.clone(), &MeshParams::default()).unwrap_or_else(|e| panic!("scale {scale:e}, stray at {stray:e}: {e}"));
+            assert_eq!((m.info.welded_vertices, m.info.collapsed_triangles), (0, 0), "scale {scale:e}, stray at {stray:e}");
+            assert_eq!(m.info.isolated_vertices, alone.info.isolated_vertices + 1);
+            assert_eq!((&m.triangles, &m.input_index), (&alone.triangles, &alone.input_index));
+            assert_eq!(m.info.degenerate_triangles, 0);
+        }
     }
 
     #[test]
