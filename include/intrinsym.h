@@ -7,8 +7,8 @@
 #include <stddef.h>
 #include <stdint.h>
 #define SYM_VERSION_MAJOR 0
-#define SYM_VERSION_MINOR 6
-#define SYM_VERSION_PATCH 5
+#define SYM_VERSION_MINOR 7
+#define SYM_VERSION_PATCH 0
 
 
 /**
@@ -259,6 +259,11 @@ typedef struct {
    * covers it).
    */
   size_t kept_components;
+  /**
+   * Triangles repeating an earlier one's three vertices, in either orientation (dropped;
+   * added in 0.7: written only when `struct_size` covers it).
+   */
+  size_t duplicate_triangles;
 } sym_mesh_report;
 
 #ifdef __cplusplus

@@ -245,6 +245,9 @@ fn run(cli: Cli) -> Result<(), intrinsym::Error> {
                     info.non_manifold_edges
                 );
             }
+            if info.duplicate_triangles > 0 {
+                println!("  note: {} repeated triangles (the same three vertices as an earlier one) dropped", info.duplicate_triangles);
+            }
             if info.welded_vertices > 0 {
                 println!(
                     "  note: {} coincident vertices welded ({} triangles collapsed and dropped); they get the map of the vertex they were welded to",

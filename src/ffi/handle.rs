@@ -123,6 +123,9 @@ pub struct sym_mesh_report {
     /// Components processed, each on its own (added in 0.4: written only when `struct_size`
     /// covers it).
     pub kept_components: usize,
+    /// Triangles repeating an earlier one's three vertices, in either orientation (dropped;
+    /// added in 0.7: written only when `struct_size` covers it).
+    pub duplicate_triangles: usize,
 }
 
 /// Progress callback: `fraction` in [0, 1]; return 0 to cancel, nonzero to continue.
@@ -545,6 +548,7 @@ pub unsafe extern "C" fn sym_get_mesh_report(result: *const sym_result, out: *mu
             welded_vertices: i.welded_vertices,
             collapsed_triangles: i.collapsed_triangles,
             kept_components: i.kept_components,
+            duplicate_triangles: i.duplicate_triangles,
         };
         // SAFETY: `out` has `caller_size` writable bytes (caller contract).
         unsafe { write_versioned(out, &value, caller_size) };

@@ -10,7 +10,8 @@
 //!   "components": [ { "vertices", "area", "continuous": { "dimension", "residuals" } } ],
 //!                                   // processed components, largest first; area: share
 //!   "mesh": { "isolated_vertices", "components", "kept_components", "ignored_component_vertices",
-//!             "non_manifold_edges", "degenerate_triangles", "welded_vertices", "collapsed_triangles" },
+//!             "non_manifold_edges", "degenerate_triangles", "welded_vertices", "collapsed_triangles",
+//!             "duplicate_triangles" },
 //!   "symmetries": [ { "id", "kind": "global"|"partial", "group", "order", "complexity",
 //!                     "distortion", "score", "orientation": "reversing"|"preserving",
 //!                     "reversal", "curvature_change", "band_trace", "fixed", "source", "target", "support_pairs": [[a, b], …],
@@ -76,6 +77,7 @@ pub fn to_json(det: &Detection, params: &Params) -> Value {
             "degenerate_triangles": det.mesh.degenerate_triangles,
             "welded_vertices": det.mesh.welded_vertices,
             "collapsed_triangles": det.mesh.collapsed_triangles,
+            "duplicate_triangles": det.mesh.duplicate_triangles,
         },
         "params": {
             "eigenpairs": params.eigen.k,

@@ -69,6 +69,26 @@ int main(int argc, char **argv) {
     sym_free(r);
     r = NULL;
     {
+        /* Ten faces repeated reversed (a double-sided export): dropped and counted (0.7). */
+        uint32_t *t2 = (uint32_t *)malloc(3 * (m.nt + 10) * sizeof(uint32_t));
+        sym_mesh_report info;
+        CHECK(t2 != NULL, "memory");
+        memcpy(t2, m.t, 3 * m.nt * sizeof(uint32_t));
+        for (i = 0; i < 10; i++) {
+            t2[3 * (m.nt + i)] = m.t[3 * i + 2];
+            t2[3 * (m.nt + i) + 1] = m.t[3 * i + 1];
+            t2[3 * (m.nt + i) + 2] = m.t[3 * i];
+        }
+        CHECK(sym_detect(m.v, m.nv, t2, m.nt + 10, p, NULL, NULL, &r) == SYM_STATUS_OK, "detect with repeated faces");
+        memset(&info, 0, sizeof info);
+        info.struct_size = sizeof info;
+        CHECK(sym_get_mesh_report(r, &info) == SYM_STATUS_OK && info.duplicate_triangles == 10 && info.non_manifold_edges == 0,
+              "repeated faces: %zu dropped, %zu non-manifold edges", info.duplicate_triangles, info.non_manifold_edges);
+        free(t2);
+        sym_free(r);
+        r = NULL;
+    }
+    {
         /* Two copies, the second 3 units further along x. */
         size_t n = m.nv, good = 0;
         double *v2 = (double *)malloc(6 * n * sizeof(double));
