@@ -189,10 +189,10 @@ bool FilterIntrinsymPlugin::applyFilter(QAction *, MeshDocument &md, const RichP
         if (sym_get_mesh_report(result, &info) == SYM_STATUS_OK) {
             Log("Mesh: %d vertices, %d triangles; %d coincident vertices welded (%d triangles collapsed); %d repeated triangles dropped; "
                 "%d unreferenced vertices ignored; %d components, %d processed each on its own, %d vertices of smaller ones ignored (left grey, quality 0); "
-                "%d non-manifold edges; %d zero-area triangles",
+                "%d non-manifold edges; %d zero-area triangles; %d holes capped for the detection (an image in a hole is shown on its rim)",
                 int(info.input_vertices), int(info.input_triangles), int(info.welded_vertices), int(info.collapsed_triangles),
                 int(info.duplicate_triangles), int(info.isolated_vertices), int(info.components), int(info.kept_components),
-                int(info.ignored_component_vertices), int(info.non_manifold_edges), int(info.degenerate_triangles));
+                int(info.ignored_component_vertices), int(info.non_manifold_edges), int(info.degenerate_triangles), int(info.closed_holes));
         }
         const int dimension = sym_continuous_dimension(result);
         if (dimension > 0)

@@ -82,6 +82,7 @@ use crate::error::Error;
 use crate::hierarchy::Hierarchy;
 use crate::judge::{Judge, JudgeParams, LowBand, Verdict};
 use crate::maps::{self, proxy::Proxy, Context, MapParams};
+use crate::mesh::holes::Closed;
 use crate::mesh::Mesh;
 use crate::parts::PartParams;
 use crate::sampling::farthest_point;
@@ -188,6 +189,12 @@ pub struct Params {
     /// A component of more than 4 times this many vertices is detected on a coarse mesh of
     /// this many, and the maps are lifted ([`crate::hierarchy`]; default 6000, 0: never).
     pub hierarchy_vertices: usize,
+    /// Boundary loops from `min_hole` to `max_hole` times √area long are holes, capped before
+    /// detection ([`crate::mesh::holes`]; defaults [`crate::mesh::holes::MIN_LOOP`] and
+    /// [`crate::mesh::holes::MAX_LOOP`]; `max_hole` 0: never).
+    pub min_hole: f64,
+    /// See `min_hole`.
+    pub max_hole: f64,
 }
 
 impl Default for Params {
@@ -217,6 +224,8 @@ impl Default for Params {
             continuous: ContinuousParams::default(),
             parts: PartParams::default(),
             hierarchy_vertices: 6000,
+            min_hole: crate::mesh::holes::MIN_LOOP,
+            max_hole: crate::mesh::holes::MAX_LOOP,
         }
     }
 }
@@ -497,13 +506,76 @@ struct PartResult {
     spectral: Spectral,
     domain: Mesh,
     hierarchy: Option<Hierarchy>,
+    /// The holes capped before detection: the domain (or the mesh its coarse mesh simplifies)
+    /// is the closed surface, whose vertices past the component's are the caps'.
+    closed: Option<Closed>,
 }
 
-/// The pipeline on one connected component (unit area), directly or, for a large one, on its
-/// coarse mesh with the maps lifted back ([`crate::hierarchy`]). When the coarse mesh cannot be
-/// built (a mesh so irregular that its simplification is not a valid mesh) the component is
-/// detected at full resolution.
+impl PartResult {
+    /// The component's vertex standing for vertex `v` of the surface detected on (the
+    /// component, or its closed version): itself, or a cap vertex's anchor on the rim.
+    fn on_component(&self, v: usize) -> usize {
+        self.closed.as_ref().map_or(v, |c| c.on_mesh(v))
+    }
+}
+
+/// The pipeline on one connected component (unit area), with its holes capped
+/// ([`crate::mesh::holes`]): the detection runs on the closed surface, and its results are
+/// carried back to the component's vertices (an image in a cap becomes the cap vertex's
+/// anchor on the rim).
 fn detect_part(mesh: Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> bool) -> Result<PartResult, Error> {
+    let closed = if params.max_hole > 0.0 { crate::mesh::holes::close(&mesh, params.min_hole, params.max_hole) } else { None };
+    let Some(closed) = closed else {
+        return detect_surface(mesh, params, None, progress);
+    };
+    // The raw mean curvature without the creases along the caps' rims.
+    let raw = (params.maps.curvature_weight > 0.0).then(|| {
+        let normals = closed.mesh.vertex_normals(&closed.mesh.oriented_triangles());
+        let mut raw = crate::descriptors::curvature::raw_mean_curvature(&closed.mesh, &normals).0;
+        closed.calm_curvature(&mut raw);
+        raw
+    });
+    let mut r = detect_surface(closed.mesh.clone(), params, raw, progress)?;
+    reopen(&mut r.det, &mesh, &closed);
+    r.closed = Some(closed);
+    Ok(r)
+}
+
+/// A detection made on `closed` (a component with its holes capped) in the component's terms:
+/// maps and confidences on its input vertices only, images and seeds in caps moved to their
+/// anchors, the region counted on the component's vertices, the mesh report the component's
+/// with the holes closed.
+fn reopen(det: &mut Detection, mesh: &Mesh, closed: &Closed) {
+    let inputs = mesh.info.input_vertices;
+    let anchor_input: Vec<usize> = closed.anchor.iter().map(|&a| mesh.input_index[a as usize] as usize).collect();
+    let input = |w: usize| if w < inputs { w } else { anchor_input[w - inputs] };
+    for s in &mut det.symmetries {
+        s.map.truncate(inputs);
+        s.confidence.truncate(inputs);
+        for w in s.map.iter_mut().filter(|w| **w >= 0) {
+            *w = input(*w as usize) as i64;
+        }
+        (s.source, s.target) = (input(s.source), input(s.target));
+        for pair in &mut s.support_pairs {
+            *pair = (input(pair.0), input(pair.1));
+        }
+        s.region_size = mesh.input_index.iter().filter(|&&i| s.map[i as usize] >= 0).count();
+    }
+    det.vertices = inputs;
+    det.mesh = mesh.info.clone();
+    det.mesh.closed_holes = closed.holes;
+    det.mesh.cap_vertices = closed.anchor.len();
+    if let Some(c) = det.components.first_mut() {
+        c.vertices = mesh.num_vertices();
+    }
+}
+
+/// [`detect_part`] on a surface as it is, directly or, for a large one, on its coarse mesh
+/// with the maps lifted back ([`crate::hierarchy`]). When the coarse mesh cannot be built (a
+/// mesh so irregular that its simplification is not a valid mesh) it is detected at full
+/// resolution. `raw`: the raw mean curvature of the mesh's vertices when the caller has it
+/// (`None`: estimated here).
+fn detect_surface(mesh: Mesh, params: &Params, raw: Option<Vec<f64>>, progress: &mut dyn FnMut(f64) -> bool) -> Result<PartResult, Error> {
     let n = mesh.num_vertices();
     let t = Instant::now();
     // The simplification has the first 10% of the progress, the coarse detection the next
@@ -518,8 +590,8 @@ fn detect_part(mesh: Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
         None
     };
     let Some(h) = built else {
-        let (det, spectral) = pipeline(&mesh, params, None, None, progress)?;
-        return Ok(PartResult { det, spectral, domain: mesh, hierarchy: None });
+        let (det, spectral) = pipeline(&mesh, params, None, raw.as_deref(), progress)?;
+        return Ok(PartResult { det, spectral, domain: mesh, hierarchy: None, closed: None });
     };
     let building = t.elapsed().as_secs_f64();
     if !progress(0.1) {
@@ -530,8 +602,8 @@ fn detect_part(mesh: Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
     let oriented = mesh.oriented_triangles();
     let normals = mesh.vertex_normals(&oriented);
     let curvature = (params.maps.curvature_weight > 0.0).then(|| {
-        let (raw, mass) = crate::descriptors::curvature::raw_mean_curvature(&mesh, &normals);
-        crate::descriptors::curvature::restrict_to_cells(&raw, &mass, &h.owner, coarse.num_vertices())
+        let (estimated, mass) = crate::descriptors::curvature::raw_mean_curvature(&mesh, &normals);
+        crate::descriptors::curvature::restrict_to_cells(raw.as_deref().unwrap_or(&estimated), &mass, &h.owner, coarse.num_vertices())
     });
     // The fine lumped mass: the coarse eigenbasis's cell masses, later the judge's band.
     let fine_mass = crate::spectral::mass::lumped_mass(&mesh, &crate::spectral::cotan::mollified_edge_lengths(&mesh));
@@ -606,7 +678,7 @@ fn detect_part(mesh: Mesh, params: &Params, progress: &mut dyn FnMut(f64) -> boo
     if !progress(1.0) {
         return Err(Error::Cancelled { stage: "report" });
     }
-    Ok(PartResult { det, spectral, domain: coarse, hierarchy: Some(h) })
+    Ok(PartResult { det, spectral, domain: coarse, hierarchy: Some(h), closed: None })
 }
 
 /// [`detect`] on a mesh of several components (`parts`, largest first, in the indices of the
@@ -691,7 +763,11 @@ fn several(whole: &Mesh, parts: &[Mesh], params: &Params, progress: &mut dyn FnM
         symmetries,
         timings,
         candidates: results.iter().map(|r| r.det.candidates).sum(),
-        mesh: whole.info.clone(),
+        mesh: crate::mesh::MeshInfo {
+            closed_holes: results.iter().map(|r| r.det.mesh.closed_holes).sum(),
+            cap_vertices: results.iter().map(|r| r.det.mesh.cap_vertices).sum(),
+            ..whole.info.clone()
+        },
         continuous: results[0].det.continuous.clone(),
         components: results.iter().zip(&shares).map(|(r, &area)| Component { vertices: r.det.components[0].vertices, area, continuous: r.det.continuous.clone() }).collect(),
     })
@@ -729,10 +805,12 @@ fn swap(
 ) -> Symmetry {
     // On the components' own vertices: a domain vertex is a component vertex, or a coarse
     // vertex standing for its cell.
-    let to_part = |r: &PartResult, c: usize| r.hierarchy.as_ref().map_or(c, |h| h.seeds[c]);
+    // (A vertex of a cap over a hole stands for its anchor on the rim.)
+    let to_part = |r: &PartResult, c: usize| r.on_component(r.hierarchy.as_ref().map_or(c, |h| h.seeds[c]));
     let over_part = |r: &PartResult, part: &Mesh, other: &PartResult, map: &[usize]| -> Vec<usize> {
         match &r.hierarchy {
-            None => map.iter().map(|&w| to_part(other, w)).collect(),
+            // The component's own vertices come first on a closed surface.
+            None => map.iter().take(part.num_vertices()).map(|&w| to_part(other, w)).collect(),
             Some(h) => (0..part.num_vertices()).map(|v| to_part(other, map[h.owner[v] as usize])).collect(),
         }
     };

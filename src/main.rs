@@ -82,6 +82,11 @@ enum Command {
         /// this many vertices and lift the maps to every vertex (0: always at full resolution).
         #[arg(long, default_value_t = 6000)]
         hierarchy_vertices: usize,
+        /// Cap every hole (boundary loop) from 0.4 to this many times √area long before
+        /// detecting; the rims of open surfaces are longer (a hemisphere's 2.5) and stay open
+        /// (0: never cap).
+        #[arg(long, default_value_t = intrinsym::mesh::holes::MAX_LOOP, value_parser = non_negative)]
+        max_hole: f64,
         /// Number of symmetry groups (default: automatic).
         #[arg(long)]
         groups: Option<usize>,
@@ -185,6 +190,7 @@ fn run(cli: Cli) -> Result<(), intrinsym::Error> {
             curvature_weight,
             proxy_vertices,
             hierarchy_vertices,
+            max_hole,
             groups,
             parts,
             reject_non_manifold,
@@ -218,6 +224,7 @@ fn run(cli: Cli) -> Result<(), intrinsym::Error> {
             params.maps.curvature_weight = curvature_weight;
             params.maps.proxy_vertices = proxy_vertices;
             params.hierarchy_vertices = hierarchy_vertices;
+            params.max_hole = max_hole;
             params.groups = groups;
             params.parts.enabled = parts;
             // A progress bar on stderr, hidden when stderr is not a terminal.
@@ -243,6 +250,12 @@ fn run(cli: Cli) -> Result<(), intrinsym::Error> {
                     info.components.saturating_sub(info.kept_components),
                     info.degenerate_triangles,
                     info.non_manifold_edges
+                );
+            }
+            if det.mesh.closed_holes > 0 {
+                println!(
+                    "  note: {} holes capped for the detection ({} cap vertices; an image that falls in a cap is reported on the hole's rim)",
+                    det.mesh.closed_holes, det.mesh.cap_vertices
                 );
             }
             if info.duplicate_triangles > 0 {

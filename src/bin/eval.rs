@@ -81,6 +81,8 @@ fn set_param(p: &mut Params, kv: &str) -> Result<(), String> {
         "global_fraction" => p.maps.global_fraction = f()?,
         "proxy_vertices" => p.maps.proxy_vertices = u()?,
         "hierarchy_vertices" => p.hierarchy_vertices = u()?,
+        "max_hole" => p.max_hole = f()?,
+        "min_hole" => p.min_hole = f()?,
         "fixed_radius" => p.judge.fixed_radius = f()?,
         "stencil" => p.judge.stencil = f()?,
         "max_fixed" => p.max_fixed = f()?,

@@ -126,6 +126,9 @@ pub struct sym_mesh_report {
     /// Triangles repeating an earlier one's three vertices, in either orientation (dropped;
     /// added in 0.7: written only when `struct_size` covers it).
     pub duplicate_triangles: usize,
+    /// Holes capped for the detection (boundary loops short against the surface; added in
+    /// 0.7: written only when `struct_size` covers it).
+    pub closed_holes: usize,
 }
 
 /// Progress callback: `fraction` in [0, 1]; return 0 to cancel, nonzero to continue.
@@ -549,6 +552,7 @@ pub unsafe extern "C" fn sym_get_mesh_report(result: *const sym_result, out: *mu
             collapsed_triangles: i.collapsed_triangles,
             kept_components: i.kept_components,
             duplicate_triangles: i.duplicate_triangles,
+            closed_holes: i.closed_holes,
         };
         // SAFETY: `out` has `caller_size` writable bytes (caller contract).
         unsafe { write_versioned(out, &value, caller_size) };

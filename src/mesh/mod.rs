@@ -23,6 +23,7 @@
 //! Polygon faces in files are fan-triangulated by the readers in [`io`]; vertex indices in
 //! every result are those of the input arrays ([`Mesh::input_index`] maps back).
 
+pub mod holes;
 pub mod io;
 pub(crate) mod vec3;
 
@@ -117,6 +118,11 @@ pub struct MeshInfo {
     /// Triangles with the same three vertices as an earlier one (in any order, so either
     /// orientation; in the input or after welding): dropped, the earlier one kept.
     pub duplicate_triangles: usize,
+    /// Holes (boundary loops no longer than `Params::max_hole`·√area) capped for the
+    /// detection ([`holes`]); filled in by detection, 0 from validation.
+    pub closed_holes: usize,
+    /// Vertices of those caps (not reported: an image in a cap is reported on the rim).
+    pub cap_vertices: usize,
 }
 
 /// Why a mesh was refused.
@@ -393,6 +399,8 @@ impl Mesh {
                 welded_vertices: welded.len(),
                 collapsed_triangles,
                 duplicate_triangles,
+                closed_holes: 0,
+                cap_vertices: 0,
             },
         })
     }

@@ -2,7 +2,7 @@
 //!
 //! ```text
 //! { "vertices": n, "faces": m,
-//!   "params": { "eigenpairs", "samples", "seed", "restarts", "min_score_ratio", "wks_quantile", "eps", "accept", "polish", "final_polish", "proxy_vertices", "hierarchy_vertices", "groups", "parts" },
+//!   "params": { "eigenpairs", "samples", "seed", "restarts", "min_score_ratio", "wks_quantile", "eps", "accept", "polish", "final_polish", "proxy_vertices", "hierarchy_vertices", "min_hole", "max_hole", "groups", "parts" },
 //!   "timings": { "spectral", "descriptors", "distance", "sampling", "voting", "maps",
 //!                "maps_proxy", "maps_profile", "maps_fmap", "maps_refine", "maps_polish", "maps_compose", "maps_lift", "parts",
 //!                "congruence", "hierarchy", "lift", "characterize", "cluster", "total" },   // seconds
@@ -11,7 +11,7 @@
 //!                                   // processed components, largest first; area: share
 //!   "mesh": { "isolated_vertices", "components", "kept_components", "ignored_component_vertices",
 //!             "non_manifold_edges", "degenerate_triangles", "welded_vertices", "collapsed_triangles",
-//!             "duplicate_triangles" },
+//!             "duplicate_triangles", "closed_holes", "cap_vertices" },
 //!   "symmetries": [ { "id", "kind": "global"|"partial", "group", "order", "complexity",
 //!                     "distortion", "score", "orientation": "reversing"|"preserving",
 //!                     "reversal", "curvature_change", "band_trace", "fixed", "source", "target", "support_pairs": [[a, b], …],
@@ -78,6 +78,8 @@ pub fn to_json(det: &Detection, params: &Params) -> Value {
             "welded_vertices": det.mesh.welded_vertices,
             "collapsed_triangles": det.mesh.collapsed_triangles,
             "duplicate_triangles": det.mesh.duplicate_triangles,
+            "closed_holes": det.mesh.closed_holes,
+            "cap_vertices": det.mesh.cap_vertices,
         },
         "params": {
             "eigenpairs": params.eigen.k,
@@ -92,6 +94,8 @@ pub fn to_json(det: &Detection, params: &Params) -> Value {
             "final_polish": params.maps.final_polish,
             "proxy_vertices": params.maps.proxy_vertices,
             "hierarchy_vertices": params.hierarchy_vertices,
+            "min_hole": params.min_hole,
+            "max_hole": params.max_hole,
             "groups": params.groups,
             "parts": params.parts.enabled,
         },
