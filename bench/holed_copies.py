@@ -32,7 +32,7 @@ import scipy.sparse as sp
 from scipy.sparse.csgraph import dijkstra
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from hierarchy import read_off  # noqa: E402
+from hierarchy import read_off, write_off  # noqa: E402
 
 
 def area(v, faces):
@@ -77,12 +77,7 @@ def main():
             truth = np.loadtxt(truth_path, dtype=int).reshape(-1, 2)
             truth = truth[used[truth[:, 0]] & used[truth[:, 1]]]
             name = os.path.basename(path)
-            with open(os.path.join(args.out, ds, name), "w") as f:
-                f.write(f"OFF\n{used.sum()} {len(faces)} 0\n")
-                f.write("\n".join("%.9g %.9g %.9g" % tuple(p) for p in v[used]))
-                f.write("\n")
-                f.write("\n".join("3 %d %d %d" % tuple(t) for t in new[faces]))
-                f.write("\n")
+            write_off(os.path.join(args.out, ds, name), v[used], new[faces])
             np.savetxt(os.path.join(args.out, ds, os.path.basename(truth_path)), new[truth], fmt="%d")
             print(f"{ds}/{name}: {used.sum()} of {len(v)} vertices left, {len(truth)} truth pairs")
 

@@ -10,9 +10,10 @@
 //! signature, the biharmonic distance and the functional maps. Measured on TOSCA's cat0 with
 //! three holes of radius 0.08·√area (7% of its vertices removed): profile maps made from the
 //! *true* sample correspondences with biharmonic distances score 45% acc@0.05, with geodesic
-//! ones 88%; the detection finds no mirror at all (2.5%; intact 98%). The SHREC'16 kids have
-//! such holes in shared/data (two small symmetric loops and, on most, one of 0.18–0.31·√area
-//! on one side only).
+//! ones 88%; the detection finds no mirror at all (2.5%; intact 98%). Over holed copies of
+//! TOSCA and FAUST (`bench/holed_copies.py`: three holes of radius 0.08·√area each, seed 5),
+//! best / first acc@0.05 63.9 / 57.8 → 83.6 / 81.5% on TOSCA and 51.4 / 45.5 → 77.6 / 75.6% on
+//! FAUST with the holes capped (docs/accuracy.md, "Session 31").
 //!
 //! **What.** A boundary loop (a cycle of edges with one triangle each, traced on the
 //! consistently oriented triangles) from [`MIN_LOOP`] to [`MAX_LOOP`] times √area long is a
