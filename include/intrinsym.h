@@ -33,27 +33,6 @@
 #define MIN_COMPONENT_SHARE 0.01
 
 /**
- * The longest boundary loop that is closed, in units of √area of the mesh: the rims of open
- * surfaces are longer (a hemisphere 2.5, a disk 3.5), a scan's holes shorter (three holes of
- * radius 0.08·√area punched in a generated quadruped leave rims of 0.43–1.05, two of them
- * run together; a tube of length 10 radii has rims of 0.79 at its ends: capped, it stays as
- * symmetric as it was).
- */
-#define MAX_LOOP 2.0
-
-/**
- * The shortest boundary loop that is closed, in units of √area. Capping small holes gains
- * nothing and costs a little: the small loops of shared/data (the SHREC'16 kids' and KIDS
- * poses', 0.02–0.31·√area, most in mirror-image pairs) capped lowered the kids by 3.2 and
- * the KIDS poses by 2.2 points acc@0.05 (seeds 0, 10, 20, best of the reported symmetries);
- * three holes of radius 0.05·√area (rims about 0.31) punched in twelve TOSCA shapes cost 3.5
- * points, and capping them gained 1.9 (best) and lost 0.5 (first); holes of radius 0.08
- * (rims about 0.5) cost tens of points, and capping wins them back (docs/accuracy.md,
- * "Session 31").
- */
-#define MIN_LOOP 0.4
-
-/**
  * At most this many good pairs vote (those with the closest signatures): 12,000 pairs cost two
  * relations of 18 MB each and about a second; the defaults (64 samples, quantile 0.2) give
  * about 800.
