@@ -49,6 +49,23 @@ def read_off(path):
     return v, f
 
 
+def area(v, f):
+    """Surface area of the triangles `f` of positions `v`."""
+    a, b, c = v[f[:, 0]], v[f[:, 1]], v[f[:, 2]]
+    return 0.5 * np.linalg.norm(np.cross(b - a, c - a), axis=1).sum()
+
+
+def shapes_with_truth(data, datasets, out):
+    """(dataset, NAME.off path, NAME.sym.txt path) of every shape with ground truth under
+    DATA/DATASET, sorted, each dataset's folder made under OUT first (for the copy scripts)."""
+    for ds in datasets:
+        os.makedirs(os.path.join(out, ds), exist_ok=True)
+        for path in sorted(glob.glob(os.path.join(data, ds, "*.off"))):
+            truth = path[:-4] + ".sym.txt"
+            if os.path.exists(truth):
+                yield ds, path, truth
+
+
 def write_off(path, v, f):
     with open(path, "w") as out:
         out.write(f"OFF\n{len(v)} {len(f)} 0\n")

@@ -23,7 +23,6 @@ At radius 0.08 a hole's rim is about 0.5·√area long, inside `intrinsym::mesh:
 (1.0): the detector caps it. Evaluation tooling only: never in the product's runtime path.
 """
 import argparse
-import glob
 import os
 import sys
 
@@ -32,12 +31,7 @@ import scipy.sparse as sp
 from scipy.sparse.csgraph import dijkstra
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from hierarchy import read_off, write_off  # noqa: E402
-
-
-def area(v, faces):
-    a, b, c = v[faces[:, 0]], v[faces[:, 1]], v[faces[:, 2]]
-    return 0.5 * np.linalg.norm(np.cross(b - a, c - a), axis=1).sum()
+from hierarchy import area, read_off, shapes_with_truth, write_off  # noqa: E402
 
 
 def edge_graph(v, faces):
@@ -59,27 +53,21 @@ def main():
     ap.add_argument("--datasets", default="tosca,faust")
     args = ap.parse_args()
     rng = np.random.default_rng(args.seed)
-    for ds in args.datasets.split(","):
-        os.makedirs(os.path.join(args.out, ds), exist_ok=True)
-        for path in sorted(glob.glob(os.path.join(args.data, ds, "*.off"))):
-            truth_path = path[:-4] + ".sym.txt"
-            if not os.path.exists(truth_path):
-                continue
-            v, faces = read_off(path)
-            v, faces = np.asarray(v, float), np.asarray(faces)
-            centres = rng.choice(len(v), args.holes, replace=False)
-            d = dijkstra(edge_graph(v, faces), directed=False, indices=centres).min(axis=0)
-            gone = d < args.radius * np.sqrt(area(v, faces))
-            faces = faces[~gone[faces].any(axis=1)]
-            used = np.zeros(len(v), bool)
-            used[faces.ravel()] = True
-            new = np.cumsum(used) - 1
-            truth = np.loadtxt(truth_path, dtype=int).reshape(-1, 2)
-            truth = truth[used[truth[:, 0]] & used[truth[:, 1]]]
-            name = os.path.basename(path)
-            write_off(os.path.join(args.out, ds, name), v[used], new[faces])
-            np.savetxt(os.path.join(args.out, ds, os.path.basename(truth_path)), new[truth], fmt="%d")
-            print(f"{ds}/{name}: {used.sum()} of {len(v)} vertices left, {len(truth)} truth pairs")
+    for ds, path, truth_path in shapes_with_truth(args.data, args.datasets.split(","), args.out):
+        v, faces = read_off(path)
+        centres = rng.choice(len(v), args.holes, replace=False)
+        d = dijkstra(edge_graph(v, faces), directed=False, indices=centres).min(axis=0)
+        gone = d < args.radius * np.sqrt(area(v, faces))
+        faces = faces[~gone[faces].any(axis=1)]
+        used = np.zeros(len(v), bool)
+        used[faces.ravel()] = True
+        new = np.cumsum(used) - 1
+        truth = np.loadtxt(truth_path, dtype=int).reshape(-1, 2)
+        truth = truth[used[truth[:, 0]] & used[truth[:, 1]]]
+        name = os.path.basename(path)
+        write_off(os.path.join(args.out, ds, name), v[used], new[faces])
+        np.savetxt(os.path.join(args.out, ds, os.path.basename(truth_path)), new[truth], fmt="%d")
+        print(f"{ds}/{name}: {used.sum()} of {len(v)} vertices left, {len(truth)} truth pairs")
 
 
 if __name__ == "__main__":

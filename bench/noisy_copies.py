@@ -22,7 +22,6 @@ meshes (their edges are 0.014 · √area long), 11% of TOSCA's and 47% of the 60
 Evaluation tooling only: never in the product's runtime path.
 """
 import argparse
-import glob
 import os
 import shutil
 import sys
@@ -30,12 +29,7 @@ import sys
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from hierarchy import read_off  # noqa: E402
-
-
-def area(v, faces):
-    a, b, c = v[faces[:, 0]], v[faces[:, 1]], v[faces[:, 2]]
-    return 0.5 * np.linalg.norm(np.cross(b - a, c - a), axis=1).sum()
+from hierarchy import area, read_off, shapes_with_truth  # noqa: E402
 
 
 def main():
@@ -48,23 +42,18 @@ def main():
     ap.add_argument("--datasets", default="tosca,faust,shrec16_kids,kids_hires")
     args = ap.parse_args()
     rng = np.random.default_rng(args.seed)
-    for ds in args.datasets.split(","):
-        os.makedirs(os.path.join(args.out, ds), exist_ok=True)
-        for path in sorted(glob.glob(os.path.join(args.data, ds, "*.off"))):
-            truth = path[:-4] + ".sym.txt"
-            if not os.path.exists(truth):
-                continue
-            v, faces = read_off(path)
-            v = v + rng.normal(0.0, args.sigma * np.sqrt(area(v, faces)), v.shape)
-            name = os.path.basename(path)
-            with open(os.path.join(args.out, ds, name), "w") as f:
-                f.write(f"OFF\n{len(v)} {len(faces)} 0\n")
-                f.write("\n".join("%.9g %.9g %.9g" % tuple(p) for p in v))
-                f.write("\n")
-                f.write("\n".join("3 %d %d %d" % tuple(t) for t in faces))
-                f.write("\n")
-            shutil.copy(truth, os.path.join(args.out, ds, os.path.basename(truth)))
-            print(f"{ds}/{name}: {len(v)} vertices")
+    for ds, path, truth in shapes_with_truth(args.data, args.datasets.split(","), args.out):
+        v, faces = read_off(path)
+        v = v + rng.normal(0.0, args.sigma * np.sqrt(area(v, faces)), v.shape)
+        name = os.path.basename(path)
+        with open(os.path.join(args.out, ds, name), "w") as f:
+            f.write(f"OFF\n{len(v)} {len(faces)} 0\n")
+            f.write("\n".join("%.9g %.9g %.9g" % tuple(p) for p in v))
+            f.write("\n")
+            f.write("\n".join("3 %d %d %d" % tuple(t) for t in faces))
+            f.write("\n")
+        shutil.copy(truth, os.path.join(args.out, ds, os.path.basename(truth)))
+        print(f"{ds}/{name}: {len(v)} vertices")
 
 
 if __name__ == "__main__":

@@ -563,7 +563,7 @@ fn reopen(det: &mut Detection, mesh: &Mesh, closed: &Closed) {
     }
     det.vertices = inputs;
     det.mesh = mesh.info.clone();
-    det.mesh.closed_holes = closed.holes;
+    det.mesh.closed_holes = closed.rims.len();
     det.mesh.cap_vertices = closed.anchor.len();
     if let Some(c) = det.components.first_mut() {
         c.vertices = mesh.num_vertices();

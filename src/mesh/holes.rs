@@ -68,8 +68,6 @@ pub struct Closed {
     pub original: usize,
     /// For each cap vertex, the rim vertex nearest it (a vertex of the mesh).
     pub anchor: Vec<u32>,
-    /// Holes closed.
-    pub holes: usize,
     /// Each hole's rim (vertices of the mesh) and the range of its cap's vertices.
     pub rims: Vec<(Vec<u32>, std::ops::Range<usize>)>,
 }
@@ -116,10 +114,7 @@ impl Closed {
 /// `mesh` with every boundary loop from `min_loop` to `max_loop` times √area long capped
 /// (module docs); `None` when there is none (a closed mesh, or only short or long rims).
 pub fn close(mesh: &Mesh, min_loop: f64, max_loop: f64) -> Option<Closed> {
-    let loops = boundary_loops(mesh);
-    if loops.is_empty() {
-        return None;
-    }
+    let Boundary { loops, oriented: mut triangles } = boundary_loops(mesh)?;
     let scale = mesh.area().sqrt();
     let holes: Vec<Vec<u32>> = loops
         .into_iter()
@@ -130,7 +125,6 @@ pub fn close(mesh: &Mesh, min_loop: f64, max_loop: f64) -> Option<Closed> {
     }
     let original = mesh.num_vertices();
     let mut vertices = mesh.vertices.clone();
-    let mut triangles = mesh.oriented_triangles();
     let mut anchor = Vec::new();
     let mut rims = Vec::with_capacity(holes.len());
     for hole in &holes {
@@ -144,18 +138,26 @@ pub fn close(mesh: &Mesh, min_loop: f64, max_loop: f64) -> Option<Closed> {
     let mut info = mesh.info.clone();
     info.input_vertices += anchor.len();
     let closed = Mesh { vertices, triangles, input_index, welded: mesh.welded.clone(), info };
-    Some(Closed { mesh: closed, original, anchor, holes: holes.len(), rims })
+    Some(Closed { mesh: closed, original, anchor, rims })
 }
 
-/// The boundary loops of `mesh` (edges of one triangle), each in the direction its triangles
-/// traverse it (consistent orientation), as vertex cycles without the closing repeat.
-fn boundary_loops(mesh: &Mesh) -> Vec<Vec<u32>> {
+/// A mesh's boundary loops and the triangles they were traced on.
+struct Boundary {
+    /// Vertex cycles without the closing repeat, each in the direction the triangles traverse it.
+    loops: Vec<Vec<u32>>,
+    /// The mesh's triangles, consistently oriented (`Mesh::oriented_triangles`).
+    oriented: Vec<[u32; 3]>,
+}
+
+/// The boundary loops of `mesh` (edges of one triangle), traced on its consistently oriented
+/// triangles; `None` for a mesh without boundary.
+fn boundary_loops(mesh: &Mesh) -> Option<Boundary> {
     // Boundary edges: keys that occur once among the sorted edge keys (linear time; a closed
     // mesh, the common case, stops here).
     let keys = super::sorted_edge_keys(&mesh.triangles);
     let boundary: Vec<u64> = keys.chunk_by(|a, b| a == b).filter(|run| run.len() == 1).map(|run| run[0]).collect();
     if boundary.is_empty() {
-        return Vec::new();
+        return None;
     }
     let on_boundary = |a: u32, b: u32| boundary.binary_search(&super::edge_key(a, b)).is_ok();
     // Each boundary half-edge `a → b` as the consistently oriented triangles traverse it, by
@@ -202,7 +204,7 @@ fn boundary_loops(mesh: &Mesh) -> Vec<Vec<u32>> {
             loops.push(cycle);
         }
     }
-    loops
+    Some(Boundary { loops, oriented: triangles })
 }
 
 fn loop_length(p: &[[f64; 3]], cycle: &[u32]) -> f64 {
@@ -314,16 +316,16 @@ mod tests {
     #[test]
     fn a_hole_is_capped_into_a_closed_surface() {
         let mesh = holed(3, -0.95);
-        let loops = boundary_loops(&mesh);
+        let loops = boundary_loops(&mesh).expect("a boundary").loops;
         assert_eq!(loops.len(), 1);
         let ratio = loop_length(&mesh.vertices, &loops[0]) / mesh.area().sqrt();
         let closed = close(&mesh, MIN_LOOP, MAX_LOOP).unwrap_or_else(|| panic!("one hole, rim {ratio} √area"));
-        assert_eq!((closed.holes, closed.original), (1, mesh.num_vertices()));
+        assert_eq!((closed.rims.len(), closed.original), (1, mesh.num_vertices()));
         let c = &closed.mesh;
         assert_eq!(&c.vertices[..closed.original], &mesh.vertices[..]);
         assert_eq!(&c.input_index[..closed.original], &mesh.input_index[..]);
         assert_eq!(c.num_vertices(), closed.original + closed.anchor.len());
-        assert!(boundary_loops(c).is_empty(), "still open");
+        assert!(boundary_loops(c).is_none(), "still open");
         assert!(c.consistently_oriented());
         let rim: std::collections::HashSet<u32> = loops[0].iter().copied().collect();
         assert!(closed.anchor.iter().all(|a| rim.contains(a)));

@@ -118,8 +118,8 @@ pub struct MeshInfo {
     /// Triangles with the same three vertices as an earlier one (in any order, so either
     /// orientation; in the input or after welding): dropped, the earlier one kept.
     pub duplicate_triangles: usize,
-    /// Holes (boundary loops no longer than `Params::max_hole`·√area) capped for the
-    /// detection ([`holes`]); filled in by detection, 0 from validation.
+    /// Holes (boundary loops from `Params::min_hole` to `Params::max_hole` times √area long)
+    /// capped for the detection ([`holes`]); filled in by detection, 0 from validation.
     pub closed_holes: usize,
     /// Vertices of those caps (not reported: an image in a cap is reported on the rim).
     pub cap_vertices: usize,
@@ -333,8 +333,9 @@ impl Mesh {
             uf.union(t[0] as usize, t[1] as usize);
             uf.union(t[0] as usize, t[2] as usize);
         }
-        // Welding may have left some vertices unused.
-        let used = referenced_vertices(n, &triangles);
+        // Welding may have left some vertices unused (dropping repeated triangles leaves
+        // every vertex its first triangle).
+        let used = if welded.is_empty() { referenced } else { referenced_vertices(n, &triangles) };
         let isolated = used.iter().filter(|&&u| !u).count() - welded.len();
         let mut comp_area = std::collections::HashMap::new();
         for (t, a) in triangles.iter().zip(&areas) {
@@ -850,17 +851,21 @@ fn bucket_offsets(n: usize, buckets: impl Iterator<Item = usize>) -> Vec<usize> 
 /// slow). Linear time: triangles are grouped by their smallest vertex, and only a group's own
 /// triangles are compared.
 fn without_duplicates(triangles: Vec<[u32; 3]>) -> (Vec<[u32; 3]>, usize) {
-    let sorted = |t: &[u32; 3]| {
-        let mut s = *t;
-        s.sort_unstable();
-        s
-    };
-    let n = triangles.iter().flatten().max().map_or(0, |&v| v as usize + 1);
-    let start = bucket_offsets(n, triangles.iter().map(|t| sorted(t)[0] as usize));
+    // Each triangle's vertices in ascending order: equal for the same three vertices.
+    let sorted: Vec<[u32; 3]> = triangles
+        .iter()
+        .map(|t| {
+            let mut s = *t;
+            s.sort_unstable();
+            s
+        })
+        .collect();
+    let n = sorted.iter().map(|s| s[2]).max().map_or(0, |v| v as usize + 1);
+    let start = bucket_offsets(n, sorted.iter().map(|s| s[0] as usize));
     let mut fill = start[..n].to_vec();
     let mut group = vec![0u32; triangles.len()];
-    for (i, t) in triangles.iter().enumerate() {
-        let low = sorted(t)[0] as usize;
+    for (i, s) in sorted.iter().enumerate() {
+        let low = s[0] as usize;
         group[fill[low]] = i as u32;
         fill[low] += 1;
     }
@@ -872,9 +877,9 @@ fn without_duplicates(triangles: Vec<[u32; 3]>) -> (Vec<[u32; 3]>, usize) {
             continue;
         }
         // By vertices, then by position in the input: the first of equal ones is kept.
-        members.sort_unstable_by_key(|&i| (sorted(&triangles[i as usize]), i));
+        members.sort_unstable_by_key(|&i| (sorted[i as usize], i));
         for pair in members.windows(2) {
-            if sorted(&triangles[pair[0] as usize]) == sorted(&triangles[pair[1] as usize]) {
+            if sorted[pair[0] as usize] == sorted[pair[1] as usize] {
                 duplicate[pair[1] as usize] = true;
                 found += 1;
             }
