@@ -114,6 +114,22 @@ fn needle_and_zero_area_triangles_give_finite_results() {
 }
 
 #[test]
+fn a_surface_flattened_onto_a_segment_is_refused_with_advice_that_works() {
+    // A sphere squashed onto a line (x = 0, z ×1e-9): every triangle a sliver. Lanczos cannot
+    // resolve 100 pairs of such a Laplacian; the refusal must name what a user can change (k),
+    // and fewer pairs must then work.
+    let sphere = shapes::icosphere(3);
+    let squashed: Vec<[f64; 3]> = sphere.vertices.iter().map(|p| [0.0, p[1], p[2] * 1e-9]).collect();
+    let mesh = intrinsym::Mesh::new(squashed, sphere.triangles.clone(), &Default::default()).unwrap();
+    let e = Eigenbasis::compute(&mesh, &params(100, Solver::Lanczos)).unwrap_err();
+    assert!(matches!(e, SpectralError::NotConverged { wanted: 100, .. }), "{e:?}");
+    let message = e.to_string();
+    assert!(message.contains("fewer eigenpairs") && message.contains("-k") && !message.contains("max_restarts"), "{message}");
+    let basis = Eigenbasis::compute(&mesh, &params(30, Solver::Lanczos)).unwrap();
+    assert!(basis.evals.iter().all(|x| x.is_finite() && *x >= 0.0));
+}
+
+#[test]
 fn eigenpair_count_limits() {
     let mesh = shapes::icosphere(1); // 42 vertices
     let all = Eigenbasis::compute(&mesh, &params(42, Solver::Auto)).unwrap();

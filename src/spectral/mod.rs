@@ -58,7 +58,15 @@ impl fmt::Display for SpectralError {
             }
             SpectralError::Factorization(m) => write!(f, "factorization failed: {m}"),
             SpectralError::NotConverged { converged, wanted } => {
-                write!(f, "Lanczos converged {converged} of {wanted} eigenpairs; raise max_restarts or lower k")
+                // Name what a user can change: k is a parameter of every front end, the restart
+                // budget only of `EigenParams`.
+                write!(
+                    f,
+                    "Lanczos converged {converged} of {wanted} eigenpairs: the mesh's Laplacian is badly \
+                     conditioned (nearly degenerate triangles: a surface flattened onto a line or stretched \
+                     thousands of times along one axis); repair the mesh, or ask for fewer eigenpairs \
+                     (k: CLI -k, C sym_params_set_eigenpairs)"
+                )
             }
             SpectralError::Cancelled => write!(f, "cancelled"),
         }
