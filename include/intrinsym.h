@@ -17,34 +17,6 @@
 #define SYM_ABI_VERSION 1
 
 /**
- * Welding tolerance relative to the bounding-box diagonal: far below any mesh's edge length
- * (a 10⁶-vertex scan's edges are about 10⁻³ of its diagonal), far above float32 rounding of
- * a written coordinate (about 10⁻⁷ of the coordinates' magnitude is the largest error).
- */
-#define WELD_REL 1e-6
-
-/**
- * [`ComponentPolicy::Each`] keeps the components of at least this fraction of the largest
- * component's area. A component of 1% of the area has eigenvalues about 100 times the main
- * surface's (λ scales as 1/area): its first eigenpairs lie beyond the main surface's 100, so
- * its descriptors and maps would rest on a handful of modes; such parts are debris of a scan
- * or loose fragments far more often than a part whose symmetry a user wants.
- */
-#define MIN_COMPONENT_SHARE 0.01
-
-/**
- * At most this many good pairs vote (those with the closest signatures): 12,000 pairs cost two
- * relations of 18 MB each and about a second; the defaults (64 samples, quantile 0.2) give
- * about 800.
- */
-#define MAX_GOOD_PAIRS 12000
-
-/**
- * At most this many seeds grow candidates (twice the default 64 samples).
- */
-#define MAX_SEEDS 128
-
-/**
  * Result of every fallible `sym_` function.
  */
 typedef enum {

@@ -62,3 +62,38 @@ fn header_versions_match_cargo_toml() {
     assert!(header.contains(&format!("#define SYM_VERSION_PATCH {}", version[2])));
     assert!(header.contains("#define SYM_ABI_VERSION 1"));
 }
+
+/// Everything the header names lives in the library's namespace: macros `SYM_…` (and the
+/// include guard), functions and types `sym_…`. A Rust `pub const` elsewhere in the crate
+/// becomes an unprefixed macro (`MAX_SEEDS`) that collides with a C user's own unless
+/// `cbindgen.toml` excludes it; regenerating the header alone would not catch that.
+#[test]
+fn header_names_are_prefixed() {
+    let header = generate();
+    let mut names = Vec::new();
+    for line in header.lines() {
+        if let Some(rest) = line.strip_prefix("#define ") {
+            let name = rest.split_whitespace().next().unwrap_or("");
+            assert!(name.starts_with("SYM_") || name == "INTRINSYM_H", "unprefixed macro {name}: exclude it in cbindgen.toml");
+            continue;
+        }
+        // Top-level declarations start in column 0; comments, members and directives do not.
+        let top = line.starts_with(|c: char| c.is_ascii_lowercase() || c == '}');
+        if !top || line.starts_with("extern \"C\"") || line.starts_with("}  /*") || line.ends_with('{') {
+            continue;
+        }
+        // `} name;` and `typedef struct tag name;` name the last word; `typedef int (*name)(…)`
+        // and a function `type *name(…` the word before the first `(` that is not `(*`.
+        let head = match line.find("(*") {
+            Some(at) => &line[at + 2..],
+            None => line.split('(').next().unwrap_or(line),
+        };
+        let name = head.split(|c: char| !(c.is_ascii_alphanumeric() || c == '_')).filter(|w| !w.is_empty());
+        let name = if line.contains("(*") { name.into_iter().next() } else { name.last() };
+        names.push(name.unwrap_or("").to_string());
+    }
+    assert!(names.len() > 30 && names.iter().any(|n| n == "sym_detect") && names.iter().any(|n| n == "sym_progress_fn"), "{names:?}");
+    for name in &names {
+        assert!(name.starts_with("sym_"), "unprefixed name {name:?} in the header");
+    }
+}
