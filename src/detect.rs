@@ -1095,8 +1095,12 @@ fn search(shared: &Shared<'_>, params: &Params, seed: u64, timings: &mut Timings
     }
 
     let t = Instant::now();
-    // Anchor candidates of the polish: voting's samples, farthest-point sampling continued.
-    let polish_anchors = {
+    // Anchor candidates of the polish: voting's samples, farthest-point sampling continued in
+    // geodesic distance on the mesh's edge graph (`MapParams::polish_geodesic`).
+    let polish_anchors = if params.maps.polish_geodesic {
+        let graph = crate::maps::geodesic::EdgeGraph::new(&mesh.vertices, adjacency.clone());
+        graph.farthest_points(&samples.vertices, params.maps.polish_samples.max(params.samples))
+    } else {
         let mut more = samples.clone();
         more.extend(emb, params.maps.polish_samples.max(params.samples));
         more.vertices

@@ -88,8 +88,8 @@ fn header_names_are_prefixed() {
             Some(at) => &line[at + 2..],
             None => line.split('(').next().unwrap_or(line),
         };
-        let name = head.split(|c: char| !(c.is_ascii_alphanumeric() || c == '_')).filter(|w| !w.is_empty());
-        let name = if line.contains("(*") { name.into_iter().next() } else { name.last() };
+        let mut name = head.split(|c: char| !(c.is_ascii_alphanumeric() || c == '_')).filter(|w| !w.is_empty());
+        let name = if line.contains("(*") { name.next() } else { name.next_back() };
         names.push(name.unwrap_or("").to_string());
     }
     assert!(names.len() > 30 && names.iter().any(|n| n == "sym_detect") && names.iter().any(|n| n == "sym_progress_fn"), "{names:?}");

@@ -74,6 +74,7 @@ fn set_param(p: &mut Params, kv: &str) -> Result<(), String> {
         "polish" => p.maps.polish = u()?,
         "final_polish" => p.maps.final_polish = u()?,
         "polish_samples" => p.maps.polish_samples = u()?,
+        "polish_geodesic" => p.maps.polish_geodesic = u()? != 0,
         "curvature_weight" => p.maps.curvature_weight = f()?,
         "curvature_time" => p.maps.curvature_time = f()?,
         "local_anchors" => p.maps.local_anchors = u()?,

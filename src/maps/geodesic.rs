@@ -240,6 +240,54 @@ impl EdgeGraph {
         d
     }
 
+    /// Farthest-point sampling in geodesic distance, continued from `start`: the vertices of
+    /// `start`, then, until there are `count` (at most every vertex reached), repeatedly the
+    /// vertex farthest from all chosen ones (the first of ties). Each new vertex's search
+    /// stops where it no longer brings a vertex nearer: past a vertex `u` already at least as
+    /// near to an earlier choice, no path through `u` does either, so the search covers the
+    /// new vertex's cell only and the distances are the full searches' minimum.
+    pub fn farthest_points(&self, start: &[usize], count: usize) -> Vec<usize> {
+        let n = self.off.len() - 1;
+        let mut radius = vec![f64::INFINITY; n];
+        let mut heap = BinaryHeap::new();
+        let mut chosen = start.to_vec();
+        for &s in start {
+            radius[s] = 0.0;
+            heap.push(Reverse((0u64, s as u32)));
+        }
+        self.shrink(&mut radius, &mut heap);
+        while chosen.len() < count.min(n) {
+            let (far, r) = radius.iter().enumerate().fold((0, -1.0), |b, (v, &r)| if r.is_finite() && r > b.1 { (v, r) } else { b });
+            if r <= 0.0 {
+                break;
+            }
+            chosen.push(far);
+            radius[far] = 0.0;
+            heap.push(Reverse((0u64, far as u32)));
+            self.shrink(&mut radius, &mut heap);
+        }
+        chosen
+    }
+
+    /// Dijkstra from the vertices on `heap` (keys: their distances' bits), lowering `radius`
+    /// where it finds a shorter way and going on only from there.
+    fn shrink(&self, radius: &mut [f64], heap: &mut BinaryHeap<Reverse<(u64, u32)>>) {
+        while let Some(Reverse((key, v))) = heap.pop() {
+            let (dv, v) = (f64::from_bits(key), v as usize);
+            if dv > radius[v] {
+                continue;
+            }
+            for e in self.off[v]..self.off[v + 1] {
+                let u = self.nbr[e] as usize;
+                let nd = dv + self.len[e];
+                if nd < radius[u] {
+                    radius[u] = nd;
+                    heap.push(Reverse((nd.to_bits(), u as u32)));
+                }
+            }
+        }
+    }
+
     /// Dijkstra from `src` up to `radius` (a binary heap), calling `settled(vertex, distance)`
     /// in order of distance until it returns `false`. `scratch` (one entry per vertex) is all
     /// infinite on entry and on return, so a caller searching many small balls pays for the
@@ -700,6 +748,37 @@ mod tests {
         let u = nbr[off[0]] as usize;
         p[u] = [p[0][0] + 1e-9, p[0][1], p[0][2]];
         assert!(EdgeGraph::new(&p, (off, nbr)).buckets.is_none());
+    }
+
+    /// Geodesic farthest points: the start first, then each vertex the farthest from all
+    /// chosen before it, as full single-source searches give it (the pruned searches are
+    /// exact), all distinct; and spread evenly: no two chosen vertices (past the start) lie
+    /// closer together than the last gap filled (farthest-point sampling's packing bound).
+    #[test]
+    fn geodesic_farthest_points_are_the_full_searches() {
+        let c = shapes::quadruped(4, Pose::Walking, 0.005, 3);
+        let g = EdgeGraph::new(&c.mesh.vertices, c.mesh.adjacency());
+        let start = [7usize, 900, 2000];
+        let chosen = g.farthest_points(&start, 60);
+        assert_eq!((&chosen[..3], chosen.len()), (&start[..], 60));
+        let mut radius = vec![f64::INFINITY; c.mesh.num_vertices()];
+        let mut gap = 0.0;
+        for (i, &v) in chosen.iter().enumerate() {
+            if i >= start.len() {
+                let far = radius.iter().fold(0.0f64, |m, &r| m.max(r));
+                assert_eq!(radius[v], far, "choice {i} is not a farthest vertex");
+                gap = far;
+            }
+            for (r, d) in radius.iter_mut().zip(g.distances(v)) {
+                *r = r.min(d);
+            }
+        }
+        let mut distinct = chosen.clone();
+        distinct.sort_unstable();
+        distinct.dedup();
+        assert_eq!(distinct.len(), chosen.len());
+        let closest = chosen[3..].iter().map(|&v| chosen.iter().filter(|&&w| w != v).map(|&w| g.distances(v)[w]).fold(f64::INFINITY, f64::min)).fold(f64::INFINITY, f64::min);
+        assert!(gap > 0.0 && closest >= gap * (1.0 - 1e-12), "gap {gap}, closest pair {closest}");
     }
 
     /// Every vertex's nearest source is one at its distance from the nearest (the minimum of

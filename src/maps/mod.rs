@@ -91,10 +91,24 @@ pub struct MapParams {
     /// `polish` = 0 there are none of either). See
     /// [`mod@crate::detect`], "Further polish of the strongest symmetry".
     pub final_polish: usize,
-    /// Anchor candidates of the polish: this many farthest-point samples (default 128, twice
-    /// voting's; a superset of them). On posed TOSCA 64 → 128 gave 85.0 → 86.4% mean acc@0.05;
-    /// 192 gave 86.5%.
+    /// Anchor candidates of the polish: voting's samples continued by farthest-point sampling
+    /// to this many (default 192, three times voting's), in geodesic distance on the mesh's
+    /// edge graph when `polish_geodesic` (the default), else in the biharmonic embedding as
+    /// voting's. With biharmonic samples, on posed TOSCA 64 → 128 gave 85.0 → 86.4% mean
+    /// acc@0.05 and 192 86.5% (sessions 3 and 22); see `polish_geodesic` for the geodesic ones.
     pub polish_samples: usize,
+    /// Continue the polish's anchors in geodesic distance (default true) rather than in the
+    /// biharmonic embedding. The polish matches geodesic distance profiles, and a map slides
+    /// along a limb where anchors are sparse; biharmonic distance shrinks the limbs and
+    /// extremities (it is a global distance), so its farthest points leave them thinly
+    /// anchored, while geodesic farthest points spread evenly over the surface. Over all of
+    /// shared/data at seeds 0, 10, 20, 30 (best / first acc@0.05, docs/accuracy.md "Session
+    /// 32"): 192 geodesic anchors against 128 biharmonic ones, all 88.5 / 87.5 → 89.0 / 88.0%
+    /// (TOSCA 88.6 / 87.9 → 89.7 / 88.7, FAUST 92.6 / 92.6 → 92.9 / 92.7, SHREC'16 70.9 / 65.5
+    /// → 71.0 / 65.9, KIDS 95.2 → 95.2); 128 geodesic anchors gained on TOSCA (+1.0 / +0.6)
+    /// but lost the KIDS poses 1.8 points (their hands' extremities took a share of the
+    /// anchors the body then lacked).
+    pub polish_geodesic: bool,
     /// Weight `μ` of the curvature term `μ |h_s(v) − h_s(w)|` in the polish's matching cost
     /// (`h_s` the band-limited mean curvature over its median magnitude,
     /// [`crate::descriptors::curvature`]; the profile term is in units of √area). Default
@@ -112,7 +126,7 @@ pub struct MapParams {
 
 impl Default for MapParams {
     fn default() -> Self {
-        MapParams { accept: 0.03, refine: 3, fmap_size: 20, search_vertices: 1000, local_anchors: 16, wks_accept: 0.2, zoomout_fraction: 0.6, zoomout_k: 100, spectral_start: 12, zoomout_step: 5, global_fraction: 0.75, polish: 4, final_polish: 8, polish_samples: 128, curvature_weight: 0.03, curvature_time: 1e-3, proxy_vertices: 6000, orientation: Default::default() }
+        MapParams { accept: 0.03, refine: 3, fmap_size: 20, search_vertices: 1000, local_anchors: 16, wks_accept: 0.2, zoomout_fraction: 0.6, zoomout_k: 100, spectral_start: 12, zoomout_step: 5, global_fraction: 0.75, polish: 4, final_polish: 8, polish_samples: 192, polish_geodesic: true, curvature_weight: 0.03, curvature_time: 1e-3, proxy_vertices: 6000, orientation: Default::default() }
     }
 }
 
