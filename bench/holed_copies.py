@@ -20,7 +20,8 @@ Then, as for the clean data (docs/accuracy.md, "Session 31"):
     ./target/release/intrinsym-eval --data OUT --peer OUT.pyfm --tsv holed.tsv
 
 At radius 0.08 a hole's rim is about 0.5·√area long, inside `intrinsym::mesh::holes::MAX_LOOP`
-(2.0) and above `MIN_LOOP` (0.4): the detector caps it. At radius 0.05 (rims about 0.3) the holes stay open. Evaluation tooling only: never in the product's runtime path.
+(2.0) and above `MIN_LOOP` (0.4): the detector caps it; at radius 0.05 (rims about 0.3) the
+holes stay open. Evaluation tooling only: never in the product's runtime path.
 """
 import argparse
 import os

@@ -1099,7 +1099,7 @@ fn search(shared: &Shared<'_>, params: &Params, seed: u64, timings: &mut Timings
     // geodesic distance on the mesh's edge graph (`MapParams::polish_geodesic`).
     let polish_anchors = if params.maps.polish_geodesic {
         let graph = crate::maps::geodesic::EdgeGraph::new(&mesh.vertices, adjacency.clone());
-        graph.farthest_points(&samples.vertices, params.maps.polish_samples.max(params.samples))
+        maps::proxy::geodesic_farthest_points(&graph, &samples.vertices, params.maps.polish_samples.max(params.samples).min(n)).0
     } else {
         let mut more = samples.clone();
         more.extend(emb, params.maps.polish_samples.max(params.samples));

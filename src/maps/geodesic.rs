@@ -10,7 +10,7 @@
 //! dense map is re-matched on geodesics:
 //!
 //! 1. **Anchors.** The samples and their images under the map. The samples are voting's,
-//!    continued by farthest-point sampling in geodesic distance ([`EdgeGraph::farthest_points`],
+//!    continued by farthest-point sampling in geodesic distance (the proxy's sampling,
 //!    [`MapParams::polish_geodesic`]) to `polish_samples` (192): evenly spread over the
 //!    surface, so a limb or an extremity holds anchors in proportion to its extent, where the
 //!    biharmonic embedding's farthest points (voting's) leave it thinly anchored and a map
@@ -244,54 +244,6 @@ impl EdgeGraph {
             true
         });
         d
-    }
-
-    /// Farthest-point sampling in geodesic distance, continued from `start`: the vertices of
-    /// `start`, then, until there are `count` (at most every vertex reached), repeatedly the
-    /// vertex farthest from all chosen ones (the first of ties). Each new vertex's search
-    /// stops where it no longer brings a vertex nearer: past a vertex `u` already at least as
-    /// near to an earlier choice, no path through `u` does either, so the search covers the
-    /// new vertex's cell only and the distances are the full searches' minimum.
-    pub fn farthest_points(&self, start: &[usize], count: usize) -> Vec<usize> {
-        let n = self.off.len() - 1;
-        let mut radius = vec![f64::INFINITY; n];
-        let mut heap = BinaryHeap::new();
-        let mut chosen = start.to_vec();
-        for &s in start {
-            radius[s] = 0.0;
-            heap.push(Reverse((0u64, s as u32)));
-        }
-        self.shrink(&mut radius, &mut heap);
-        while chosen.len() < count.min(n) {
-            let (far, r) = radius.iter().enumerate().fold((0, -1.0), |b, (v, &r)| if r.is_finite() && r > b.1 { (v, r) } else { b });
-            if r <= 0.0 {
-                break;
-            }
-            chosen.push(far);
-            radius[far] = 0.0;
-            heap.push(Reverse((0u64, far as u32)));
-            self.shrink(&mut radius, &mut heap);
-        }
-        chosen
-    }
-
-    /// Dijkstra from the vertices on `heap` (keys: their distances' bits), lowering `radius`
-    /// where it finds a shorter way and going on only from there.
-    fn shrink(&self, radius: &mut [f64], heap: &mut BinaryHeap<Reverse<(u64, u32)>>) {
-        while let Some(Reverse((key, v))) = heap.pop() {
-            let (dv, v) = (f64::from_bits(key), v as usize);
-            if dv > radius[v] {
-                continue;
-            }
-            for e in self.off[v]..self.off[v + 1] {
-                let u = self.nbr[e] as usize;
-                let nd = dv + self.len[e];
-                if nd < radius[u] {
-                    radius[u] = nd;
-                    heap.push(Reverse((nd.to_bits(), u as u32)));
-                }
-            }
-        }
     }
 
     /// Dijkstra from `src` up to `radius` (a binary heap), calling `settled(vertex, distance)`
@@ -756,16 +708,16 @@ mod tests {
         assert!(EdgeGraph::new(&p, (off, nbr)).buckets.is_none());
     }
 
-    /// Geodesic farthest points: the start first, then each vertex the farthest from all
-    /// chosen before it, as full single-source searches give it (the pruned searches are
-    /// exact), all distinct; and spread evenly: no two chosen vertices (past the start) lie
+    /// Geodesic farthest points (the proxy's seeds and the polish's anchors): the start first,
+    /// then each vertex the farthest from all chosen before it, as full single-source searches
+    /// give it (the incremental searches are exact), all distinct; and spread evenly: no two chosen vertices (past the start) lie
     /// closer together than the last gap filled (farthest-point sampling's packing bound).
     #[test]
     fn geodesic_farthest_points_are_the_full_searches() {
         let c = shapes::quadruped(4, Pose::Walking, 0.005, 3);
         let g = EdgeGraph::new(&c.mesh.vertices, c.mesh.adjacency());
         let start = [7usize, 900, 2000];
-        let chosen = g.farthest_points(&start, 60);
+        let chosen = crate::maps::proxy::geodesic_farthest_points(&g, &start, 60).0;
         assert_eq!((&chosen[..3], chosen.len()), (&start[..], 60));
         let mut radius = vec![f64::INFINITY; c.mesh.num_vertices()];
         let mut gap = 0.0;

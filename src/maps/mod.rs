@@ -95,7 +95,8 @@ pub struct MapParams {
     /// to this many (default 192, three times voting's), in geodesic distance on the mesh's
     /// edge graph when `polish_geodesic` (the default), else in the biharmonic embedding as
     /// voting's. With biharmonic samples, on posed TOSCA 64 → 128 gave 85.0 → 86.4% mean
-    /// acc@0.05 and 192 86.5% (sessions 3 and 22); see `polish_geodesic` for the geodesic ones.
+    /// acc@0.05 and 192 86.5% (and 192 gained nothing over shared/data in session 22); see
+    /// `polish_geodesic` for the geodesic ones.
     pub polish_samples: usize,
     /// Continue the polish's anchors in geodesic distance (default true) rather than in the
     /// biharmonic embedding. The polish matches geodesic distance profiles, and a map slides
