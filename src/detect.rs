@@ -899,7 +899,9 @@ fn pipeline(mesh: &Mesh, params: &Params, mass: Option<&[f64]>, curvature: Optio
     let plain_judge = Judge::new(&mesh.vertices, normals.clone(), &adjacency, scale, &params.judge).with_band(Some(LowBand::from_basis(basis)));
     let mesh_judge = plain_judge.clone().with_curvature(mesh_curvature.clone());
     let reversing = std::sync::OnceLock::new();
-    let shared = Shared { mesh, basis, desc: &desc, emb, oriented: &oriented, normals: &normals, curvature: &mesh_curvature, scale, adjacency: &adjacency, judge: &plain_judge, reversing: &reversing };
+    // The mesh's edge graph: the polish's anchors and a proxy's seeds are sampled on it.
+    let graph = maps::geodesic::EdgeGraph::new(&mesh.vertices, adjacency.clone());
+    let shared = Shared { mesh, basis, desc: &desc, emb, oriented: &oriented, normals: &normals, curvature: &mesh_curvature, scale, adjacency: &adjacency, graph: &graph, judge: &plain_judge, reversing: &reversing };
     // Searches from different first samples until one finds a symmetry the judge trusts
     // (`Params::restarts`); their symmetries are pooled.
     let mut found: Vec<Found> = Vec::new();
@@ -1052,6 +1054,8 @@ struct Shared<'a> {
     scale: f64,
     /// The mesh's CSR adjacency.
     adjacency: &'a (Vec<usize>, Vec<u32>),
+    /// The mesh's edge graph (geodesic farthest points: the polish's anchors, a proxy's seeds).
+    graph: &'a maps::geodesic::EdgeGraph,
     /// The judge on the mesh, without curvature (the maps stage's when it works on the mesh).
     judge: &'a Judge,
     /// The orientation-reversing functional map of the hypothesis generator
@@ -1077,7 +1081,7 @@ struct Search {
 /// the lift of a proxy's maps to the mesh. `progress` gets the fractions 0.6–0.96 of a
 /// single search. Writes its stages' `timings`.
 fn search(shared: &Shared<'_>, params: &Params, seed: u64, timings: &mut Timings, progress: &mut dyn FnMut(f64) -> bool) -> Result<Search, Error> {
-    let Shared { mesh, basis, desc, emb, oriented, normals, curvature: mesh_curvature, scale, adjacency, judge: mesh_judge, reversing } = *shared;
+    let Shared { mesh, basis, desc, emb, oriented, normals, curvature: mesh_curvature, scale, adjacency, graph, judge: mesh_judge, reversing } = *shared;
     let cancelled = |stage: &'static str| Error::Cancelled { stage };
     let n = mesh.num_vertices();
     let t = Instant::now();
@@ -1098,8 +1102,7 @@ fn search(shared: &Shared<'_>, params: &Params, seed: u64, timings: &mut Timings
     // Anchor candidates of the polish: voting's samples, farthest-point sampling continued in
     // geodesic distance on the mesh's edge graph (`MapParams::polish_geodesic`).
     let polish_anchors = if params.maps.polish_geodesic {
-        let graph = crate::maps::geodesic::EdgeGraph::new(&mesh.vertices, adjacency.clone());
-        maps::proxy::geodesic_farthest_points(&graph, &samples.vertices, params.maps.polish_samples.max(params.samples).min(n)).0
+        maps::proxy::geodesic_farthest_points(graph, &samples.vertices, params.maps.polish_samples.max(params.samples).min(n)).0
     } else {
         let mut more = samples.clone();
         more.extend(emb, params.maps.polish_samples.max(params.samples));
@@ -1109,7 +1112,7 @@ fn search(shared: &Shared<'_>, params: &Params, seed: u64, timings: &mut Timings
     let polish_sampling = t.elapsed().as_secs_f64();
     // On a large mesh the maps are made on a proxy of `proxy_vertices` vertices and lifted
     // (see `maps::proxy`); its first vertices are the samples and the polish's anchors.
-    let proxy = maps::proxy::wanted(n, &params.maps).then(|| Proxy::new(mesh, basis, emb, desc, &polish_anchors, params.maps.proxy_vertices));
+    let proxy = maps::proxy::wanted(n, &params.maps).then(|| Proxy::new(mesh, graph, basis, emb, desc, &polish_anchors, params.maps.proxy_vertices));
     timings.maps_proxy = t.elapsed().as_secs_f64() - polish_sampling;
     let t_stage = Instant::now();
     // The maps stage works in the vertex indices of its domain: the proxy's, whose first

@@ -74,12 +74,12 @@ pub struct Proxy {
 
 impl Proxy {
     /// A proxy of `size` vertices whose first seeds are `first` (distinct mesh vertices, in
-    /// order): proxy vertex `i < first.len()` is `first[i]`.
-    pub fn new(mesh: &Mesh, basis: &Eigenbasis, emb: &BiharmonicEmbedding, wks: &Mat<f64>, first: &[usize], size: usize) -> Proxy {
+    /// order): proxy vertex `i < first.len()` is `first[i]`. `graph` is the mesh's
+    /// ([`EdgeGraph::new`] of its vertices and adjacency).
+    pub fn new(mesh: &Mesh, graph: &EdgeGraph, basis: &Eigenbasis, emb: &BiharmonicEmbedding, wks: &Mat<f64>, first: &[usize], size: usize) -> Proxy {
         let n = mesh.num_vertices();
         let adjacency = mesh.adjacency();
-        let graph = EdgeGraph::new(&mesh.vertices, adjacency.clone());
-        let (seeds, owner) = geodesic_farthest_points(&graph, first, size.clamp(first.len().max(1), n));
+        let (seeds, owner) = geodesic_farthest_points(graph, first, size.clamp(first.len().max(1), n));
         let m = seeds.len();
         // Cells sharing a mesh edge are neighbours.
         let mut rows: Vec<Vec<u32>> = vec![Vec::new(); m];
@@ -328,7 +328,7 @@ mod tests {
     fn proxy_of(level: u32, pose: Pose, first: &[usize], size: usize) -> (shapes::Creature, Eigenbasis, Proxy) {
         let c = shapes::quadruped(level, pose, 0.0, 0);
         let (basis, emb, desc) = crate::maps::test_spectra(&c.mesh, 20);
-        let p = Proxy::new(&c.mesh, &basis, &emb, &desc, first, size);
+        let p = Proxy::new(&c.mesh, &EdgeGraph::new(&c.mesh.vertices, c.mesh.adjacency()), &basis, &emb, &desc, first, size);
         (c, basis, p)
     }
 
