@@ -773,34 +773,40 @@ fn weak_symmetries_are_left_out() {
     assert_eq!(kept.symmetries.iter().map(|s| &s.map).collect::<Vec<_>>(), strong);
 }
 
-/// The further polish (`MapParams::final_polish`) spends its passes on each search's strongest
-/// symmetry only: with one search, every other reported map is the one reported without it,
-/// the strongest map keeps its type and changes (the passes ran), and it stays as accurate
-/// (posed quadrupeds with 0.5% noise, four noise seeds: acc@0.05 0.957–0.984 with the eight
-/// further passes, 0.963–0.984 without, a change of −0.005 to +0.007 on these generated
-/// mirrors; on the shared meshes they gain, docs/accuracy.md "Sessions 24 and 25").
+/// The further polish (`MapParams::final_polish`) spends its passes on each search's
+/// `final_polish_maps` strongest symmetries only: with one search, every other reported map is
+/// one reported without it, the strongest map keeps its type and changes (the passes ran), and
+/// it stays as accurate (posed quadrupeds with 0.5% noise, four noise seeds: acc@0.05
+/// 0.957–0.984 with the eight further passes, 0.963–0.984 without, a change of −0.005 to
+/// +0.007 on these generated mirrors; on the shared meshes they gain, docs/accuracy.md
+/// "Sessions 24, 25 and 33").
 #[test]
-fn further_polish_refines_only_the_strongest_symmetry() {
+fn further_polish_refines_only_the_strongest_symmetries() {
     let mut changed = 0;
     for seed in 0..4 {
         let c = shapes::quadruped(4, Pose::Walking, 0.005, seed);
-        let with = one_search(0);
-        let mut without = with.clone();
+        let mut without = one_search(0);
         without.maps.final_polish = 0;
         let a = detect(&c.mesh, &without, &mut |_| true).unwrap();
-        let b = detect(&c.mesh, &with, &mut |_| true).unwrap();
-        assert_eq!(a.symmetries.len(), b.symmetries.len(), "seed {seed}");
-        for (x, y) in a.symmetries[1..].iter().zip(&b.symmetries[1..]) {
-            assert_eq!(x.map, y.map, "seed {seed}: a map other than the strongest changed");
+        for count in [1, 2] {
+            let mut with = one_search(0);
+            with.maps.final_polish_maps = count;
+            let b = detect(&c.mesh, &with, &mut |_| true).unwrap();
+            assert_eq!(a.symmetries.len(), b.symmetries.len(), "seed {seed}, {count} polished");
+            // The report ranks global maps first, so the `count` strongest are its first.
+            assert!(a.symmetries.iter().take(count).all(|s| s.kind == Kind::Global), "seed {seed}");
+            for x in &a.symmetries[count.min(a.symmetries.len())..] {
+                assert!(b.symmetries.iter().any(|y| y.map == x.map), "seed {seed}, {count} polished: a map other than the strongest changed");
+            }
+            let (s, t) = (&a.symmetries[0], &b.symmetries[0]);
+            assert_eq!((s.order, s.verdict.reverses()), (t.order, t.verdict.reverses()), "seed {seed}");
+            changed += usize::from(s.map != t.map);
+            let acc = |d: &intrinsym::Detection| eval::accuracy(&c.mesh, &d.symmetries[0].map, &mirror_truth(&c), &[0.05])[0];
+            let (before, after) = (acc(&a), acc(&b));
+            assert!(after >= 0.9 && after >= before - 0.01, "seed {seed}, {count} polished: acc@0.05 {before} -> {after}");
         }
-        let (s, t) = (&a.symmetries[0], &b.symmetries[0]);
-        assert_eq!((s.order, s.verdict.reverses()), (t.order, t.verdict.reverses()), "seed {seed}");
-        changed += usize::from(s.map != t.map);
-        let acc = |d: &intrinsym::Detection| eval::accuracy(&c.mesh, &d.symmetries[0].map, &mirror_truth(&c), &[0.05])[0];
-        let (before, after) = (acc(&a), acc(&b));
-        assert!(after >= 0.9 && after >= before - 0.01, "seed {seed}: acc@0.05 {before} -> {after}");
     }
-    assert!(changed >= 2, "the further passes changed the strongest map on {changed} of 4 shapes");
+    assert!(changed >= 4, "the further passes changed the strongest map in {changed} of 8 detections");
 }
 
 /// A scan's holes on one side only (three of radius 0.08·√area on a posed quadruped, 2.5k

@@ -91,6 +91,13 @@ pub struct MapParams {
     /// `polish` = 0 there are none of either). See
     /// [`mod@crate::detect`], "Further polish of the strongest symmetry".
     pub final_polish: usize,
+    /// How many of the search's strongest global symmetries get the `final_polish` passes
+    /// (default 2, polished concurrently). Where the strongest map is wrong, the right one is
+    /// often second and imprecise: over all of shared/data at seeds 0, 10, 20, 30 (best / first
+    /// acc@0.05, docs/accuracy.md "Session 33") two against one gave all 89.0 / 88.0 → 89.3 /
+    /// 88.2% (FAUST 92.9 / 92.7 → 93.0 / 93.0, SHREC'16 71.0 / 65.9 → 71.8 / 66.9, TOSCA
+    /// 89.7 / 88.7 → 89.9 / 88.8, KIDS unchanged).
+    pub final_polish_maps: usize,
     /// Anchor candidates of the polish: voting's samples continued by farthest-point sampling
     /// to this many (default 192, three times voting's), in geodesic distance on the mesh's
     /// edge graph when `polish_geodesic` (the default), else in the biharmonic embedding as
@@ -127,7 +134,7 @@ pub struct MapParams {
 
 impl Default for MapParams {
     fn default() -> Self {
-        MapParams { accept: 0.03, refine: 3, fmap_size: 20, search_vertices: 1000, local_anchors: 16, wks_accept: 0.2, zoomout_fraction: 0.6, zoomout_k: 100, spectral_start: 12, zoomout_step: 5, global_fraction: 0.75, polish: 4, final_polish: 8, polish_samples: 192, polish_geodesic: true, curvature_weight: 0.03, curvature_time: 1e-3, proxy_vertices: 6000, orientation: Default::default() }
+        MapParams { accept: 0.03, refine: 3, fmap_size: 20, search_vertices: 1000, local_anchors: 16, wks_accept: 0.2, zoomout_fraction: 0.6, zoomout_k: 100, spectral_start: 12, zoomout_step: 5, global_fraction: 0.75, polish: 4, final_polish: 8, final_polish_maps: 2, polish_samples: 192, polish_geodesic: true, curvature_weight: 0.03, curvature_time: 1e-3, proxy_vertices: 6000, orientation: Default::default() }
     }
 }
 
