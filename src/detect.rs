@@ -66,11 +66,11 @@
 //! cut short where it failed), then maps between repeated parts ([`crate::parts`]): the first
 //! symmetry is what a viewer colours, and a partial map leaves the rest uncoloured. Over
 //! shared/data at four seeds no partial map of the global stages was a shape's best (only
-//! among wrong maps: kid12's 0.008 against 0), yet at two or three shapes a seed one outscored
+//! among wrong maps: kid12's 0.008 against 0), yet at two to four shapes a seed one outscored
 //! every global map and came first (SHREC'16 kid01's partial half-turn, 0.27 against its
 //! mirror's 0.19; TOSCA dog10's); ranked after the global maps, first over all +1.0, +0.1,
-//! +1.0 and +0.9 at seeds 0, 10, 20, 30 (SHREC'16 +5.6 at three of them, −0.9 at seed 10 where
-//! kid01's mirror was not found).
+//! +1.0 and +0.9 at seeds 0, 10, 20, 30 (SHREC'16 +5.6 at three of them, +0.7 at seed 10,
+//! where kid01's mirror was not found: 0.13 → 0.004).
 //!
 //! A mesh of several connected components ([`crate::mesh::ComponentPolicy::Each`]) is
 //! detected component by component, each on its own unit-area copy (an eigenbasis of a
@@ -1642,7 +1642,7 @@ mod tests {
         assert_eq!(summary, vec![(mirror.clone(), true, 0.5), (other, true, 0.2), (mirror, false, 0.25)]);
     }
 
-    /// A map of part of the shape with a higher score than every global map.
+    /// A partial map (a global map cut short) `image` with the judge's `score`.
     fn partial(image: Vec<usize>, score: f64) -> Found {
         let mut f = found(image, 0.9, score);
         f.dense.global = false;

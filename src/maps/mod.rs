@@ -89,7 +89,7 @@ pub struct MapParams {
     /// Further passes of the polish given to each search's strongest symmetry once the search
     /// has ranked its maps (default 8; the `polish` passes of every map come first, and with
     /// `polish` = 0 there are none of either). See
-    /// [`mod@crate::detect`], "Further polish of the strongest symmetry".
+    /// [`mod@crate::detect`], "Further polish of the strongest symmetries".
     pub final_polish: usize,
     /// How many of the search's strongest global symmetries get the `final_polish` passes
     /// (default 2, polished concurrently). Where the strongest map is wrong, the right one is
