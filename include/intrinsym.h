@@ -383,8 +383,10 @@ size_t sym_count(const sym_result *result);
 size_t sym_vertex_count(const sym_result *result);
 
 /**
- * Fills `*out` with symmetry `index` (0 = strongest) of `result`. The pointers in `*out`
- * borrow from `result` and stay valid until [`sym_free`]. `out->struct_size` must be set.
+ * Fills `*out` with symmetry `index` of `result`, in the report's order: global symmetries
+ * first, then partial ones, each strongest first (0 = what a viewer colours). The pointers in
+ * `*out` borrow from `result` and stay valid until [`sym_free`]. `out->struct_size` must be
+ * set.
  *
  * # Safety
  * `out` must point to a writable `sym_symmetry` whose `struct_size` is initialised.

@@ -3,7 +3,7 @@
 //
 //   intrinsym::OpenMeshDetection d = intrinsym::detect(mesh);        // default parameters
 //   if (!d.ok()) std::cerr << d.error << "\n";
-//   // per vertex: property "intrinsym_image" (int, image under the strongest symmetry or -1),
+//   // per vertex: property "intrinsym_image" (int, image under the first reported symmetry or -1),
 //   // property "quality" (float, symmetry confidence), vertex colours (a vertex and its image
 //   // share a colour); d.result stays valid (and owned) until d is destroyed.
 //
@@ -54,7 +54,7 @@ inline std::string last_error() {
 
 /// Runs sym_detect on `mesh` and, on success, writes the "intrinsym_image" and "quality"
 /// vertex properties (persistent, so OpenMesh writes them to PLY as custom properties) and
-/// vertex colours from the strongest symmetry. `params` may be NULL (defaults).
+/// vertex colours from the first reported symmetry. `params` may be NULL (defaults).
 template <class Mesh>
 OpenMeshDetection detect(Mesh &mesh, const sym_params *params = nullptr, sym_progress_fn progress = nullptr, void *user_data = nullptr) {
     OpenMeshDetection d;

@@ -421,7 +421,7 @@ pub struct Detection {
     pub vertices: usize,
     /// Number of input triangles.
     pub faces: usize,
-    /// Symmetries, strongest first.
+    /// Symmetries: global ones first, then partial ones, each strongest first (see the module docs, "The report's order").
     pub symmetries: Vec<Symmetry>,
     /// Per-stage timings.
     pub timings: Timings,
@@ -1500,7 +1500,7 @@ fn search(shared: &Shared<'_>, params: &Params, seed: u64, timings: &mut Timings
 }
 
 /// The report phase: the verdicts of `mesh_judge`, the judge on the mesh (every map is now
-/// defined on its vertices), the symmetries strongest first in input indices with their order
+/// defined on its vertices), the symmetries in the report's order (global first, each kind strongest first) in input indices with their order
 /// and functional maps, and their groups. Writes the characterize and cluster timings.
 #[allow(clippy::too_many_arguments)]
 fn report(mesh: &Mesh, mesh_judge: &Judge, mut found: Vec<Found>, emb: &crate::distance::BiharmonicEmbedding, basis: &Eigenbasis, probes: &[usize], diameter: f64, continuous: &Continuous, params: &Params, timings: &mut Timings) -> Vec<Symmetry> {

@@ -31,7 +31,8 @@ enum Command {
         #[arg(long)]
         json: Option<PathBuf>,
         /// Write the mesh as PLY with per-vertex colour (a vertex and its image under the
-        /// strongest symmetry share a colour) and quality (symmetry confidence).
+        /// first reported symmetry, the strongest global one, share a colour) and quality
+        /// (symmetry confidence).
         #[arg(long)]
         ply: Option<PathBuf>,
         /// Write a picture of the symmetry space and of each functional map (.svg or .html).
@@ -64,8 +65,8 @@ enum Command {
         /// Passes of the geodesic polish of every map (0 disables it).
         #[arg(long, default_value_t = 4)]
         polish: usize,
-        /// Further passes of the polish for each search's strongest symmetry, after the
-        /// others are ranked (0: none; none either with --polish 0).
+        /// Further passes of the polish for each search's two strongest symmetries, after
+        /// the others are ranked (0: none; none either with --polish 0).
         #[arg(long, default_value_t = 8)]
         final_polish: usize,
         /// Weight of the polish's extrinsic cue, band-limited mean curvature, which also ranks

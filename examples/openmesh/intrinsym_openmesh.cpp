@@ -1,6 +1,6 @@
 // intrinsym_openmesh INPUT OUTPUT.ply — detect symmetries of a mesh read by OpenMesh and write a
 // binary PLY with vertex colours, a float "quality" property (symmetry confidence) and an int
-// "intrinsym_image" property (image vertex under the strongest symmetry, -1 outside it).
+// "intrinsym_image" property (image vertex under the first reported symmetry, -1 outside it).
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 

@@ -86,8 +86,8 @@ pub struct MapParams {
     /// −2.7 and −3.4 against four: a wrong reflection of kid05 gains more from the extra passes
     /// than its mirror). Time: ×1.12 on TOSCA, ×1.1–1.3 on the 60k KIDS poses against two.
     pub polish: usize,
-    /// Further passes of the polish given to each search's strongest symmetry once the search
-    /// has ranked its maps (default 8; the `polish` passes of every map come first, and with
+    /// Further passes of the polish given to each search's strongest symmetries
+    /// (`final_polish_maps` of them) once the search has ranked its maps (default 8; the `polish` passes of every map come first, and with
     /// `polish` = 0 there are none of either). See
     /// [`mod@crate::detect`], "Further polish of the strongest symmetries".
     pub final_polish: usize,
