@@ -96,7 +96,8 @@ pub struct MapParams {
     /// often second and imprecise: over all of shared/data at seeds 0, 10, 20, 30 (best / first
     /// acc@0.05, docs/accuracy.md "Session 33") two against one gave all 89.0 / 88.0 → 89.3 /
     /// 88.2% (FAUST 92.9 / 92.7 → 93.0 / 93.0, SHREC'16 71.0 / 65.9 → 71.8 / 66.9, TOSCA
-    /// 89.7 / 88.7 → 89.9 / 88.8, KIDS unchanged).
+    /// 89.7 / 88.7 → 89.9 / 88.8, KIDS unchanged); three maps gained nothing more (every
+    /// dataset within ±0.1 of two).
     pub final_polish_maps: usize,
     /// Anchor candidates of the polish: voting's samples continued by farthest-point sampling
     /// to this many (default 192, three times voting's), in geodesic distance on the mesh's
