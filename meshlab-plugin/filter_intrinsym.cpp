@@ -68,8 +68,9 @@ QString FilterIntrinsymPlugin::filterInfo(FilterIDType) const
            "<b>colour</b>: with <i>Correspondence</i>, a vertex and its image share a colour; with "
            "<i>Groups</i>, each symmetry's region is painted with its group colour; with "
            "<i>Quality</i>, a red-to-blue ramp of the confidence. One line per symmetry is logged "
-           "(kind, orientation, score, group, order, complexity, region size): global symmetries "
-           "first, then partial ones, each strongest (highest score) first. Library: intrinsym "
+           "(kind, orientation, score, group, order, complexity, region size), strongest (highest "
+           "score) first, a partial symmetry's score counting a third against global ones. "
+           "Library: intrinsym "
            + QString(sym_version()) + ".";
 }
 
@@ -93,7 +94,7 @@ void FilterIntrinsymPlugin::initParameterSet(QAction *, MeshModel &, RichParamet
     parlst.addParam(RichFloat("accept", 0.03f, "Region tolerance", "A vertex belongs to a symmetry's region when its distances are preserved within this fraction of the diameter."));
     parlst.addParam(RichInt("seed", 0, "Seed", "Random seed: results are deterministic for a seed."));
     parlst.addParam(RichInt("proxyVertices", 6000, "Proxy vertices", "Meshes of more than 1.5 times this many vertices get their maps on a proxy of this many vertices, lifted to every vertex (much faster; 0 = always the whole mesh; else 1000 to 1000000)."));
-    parlst.addParam(RichEnum("show", SHOW_STRONGEST, QStringList() << "Strongest" << "All" << "Index", "Show", "Which symmetry to write: the strongest (the first logged: the strongest global one), all (quality = best confidence over all), or the one at Index."));
+    parlst.addParam(RichEnum("show", SHOW_STRONGEST, QStringList() << "Strongest" << "All" << "Index", "Show", "Which symmetry to write: the strongest (the first logged), all (quality = best confidence over all), or the one at Index."));
     parlst.addParam(RichInt("index", 0, "Index", "Symmetry shown when Show is Index, in the logged order (0 = the first)."));
     parlst.addParam(RichEnum("colouring", COLOUR_CORRESPONDENCE, QStringList() << "Correspondence" << "Groups" << "Quality", "Colouring", "Correspondence: a vertex and its image share a colour. Groups: regions painted by symmetry group. Quality: colour ramp of the confidence."));
 }

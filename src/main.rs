@@ -31,8 +31,7 @@ enum Command {
         #[arg(long)]
         json: Option<PathBuf>,
         /// Write the mesh as PLY with per-vertex colour (a vertex and its image under the
-        /// first reported symmetry, the strongest global one, share a colour) and quality
-        /// (symmetry confidence).
+        /// first reported symmetry share a colour) and quality (symmetry confidence).
         #[arg(long)]
         ply: Option<PathBuf>,
         /// Write a picture of the symmetry space and of each functional map (.svg or .html).
@@ -53,6 +52,9 @@ enum Command {
         /// Leave out symmetries whose score is below this fraction of the strongest one's, in [0, 1] (0: report every one found).
         #[arg(long, default_value_t = 0.1, value_parser = fraction)]
         min_score_ratio: f64,
+        /// Report a partial symmetry before a global one only if it scores more than this many times higher, ≥ 1 (1: rank by score alone).
+        #[arg(long, default_value_t = 3.0, value_parser = at_least_one)]
+        global_preference: f64,
         /// Good voters: WKS distance below this quantile of all sample pairs.
         #[arg(long, default_value_t = 0.2)]
         wks_quantile: f64,
@@ -183,6 +185,7 @@ fn run(cli: Cli) -> Result<(), intrinsym::Error> {
             seed,
             restarts,
             min_score_ratio,
+            global_preference,
             wks_quantile,
             eps,
             accept,
@@ -217,6 +220,7 @@ fn run(cli: Cli) -> Result<(), intrinsym::Error> {
             params.seed = seed;
             params.restarts = restarts;
             params.min_score_ratio = min_score_ratio;
+            params.global_preference = global_preference;
             params.voting.wks_quantile = wks_quantile;
             params.voting.eps = eps;
             params.maps.accept = accept;
@@ -452,6 +456,15 @@ fn fraction(text: &str) -> Result<f64, String> {
     match text.parse::<f64>() {
         Ok(x) if (0.0..=1.0).contains(&x) => Ok(x),
         Ok(x) => Err(format!("{x} is out of range: a number from 0 to 1")),
+        Err(e) => Err(format!("{text:?} is not a number: {e}")),
+    }
+}
+
+/// A finite number ≥ 1 (clap names the option in its error).
+fn at_least_one(text: &str) -> Result<f64, String> {
+    match text.parse::<f64>() {
+        Ok(x) if x.is_finite() && x >= 1.0 => Ok(x),
+        Ok(x) => Err(format!("{x} is out of range: a finite number ≥ 1")),
         Err(e) => Err(format!("{text:?} is not a number: {e}")),
     }
 }

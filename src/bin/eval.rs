@@ -65,6 +65,7 @@ fn set_param(p: &mut Params, kv: &str) -> Result<(), String> {
         "max_distortion" => p.max_distortion = f()?,
         "max_candidates" => p.max_candidates = u()?,
         "min_score_ratio" => p.min_score_ratio = f()?,
+        "global_preference" => p.global_preference = f()?,
         "max_refinements" => p.max_refinements = u()?,
         "patience" => p.patience = u()?,
         "accept" => p.maps.accept = f()?,

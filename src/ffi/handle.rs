@@ -462,8 +462,8 @@ pub extern "C" fn sym_vertex_count(result: *const sym_result) -> usize {
     guard_value(0, || result_ref(result).map_or(0, |r| r.det.vertices))
 }
 
-/// Fills `*out` with symmetry `index` of `result`, in the report's order: global symmetries
-/// first, then partial ones, each strongest first (0 = what a viewer colours). The pointers in
+/// Fills `*out` with symmetry `index` of `result`, in the report's order: strongest first, a
+/// partial symmetry's score counting a third against global ones (0 = what a viewer colours). The pointers in
 /// `*out` borrow from `result` and stay valid until [`sym_free`]. `out->struct_size` must be
 /// set.
 ///

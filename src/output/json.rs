@@ -2,7 +2,7 @@
 //!
 //! ```text
 //! { "vertices": n, "faces": m,
-//!   "params": { "eigenpairs", "samples", "seed", "restarts", "min_score_ratio", "wks_quantile", "eps", "accept", "polish", "final_polish", "proxy_vertices", "hierarchy_vertices", "min_hole", "max_hole", "groups", "parts" },
+//!   "params": { "eigenpairs", "samples", "seed", "restarts", "min_score_ratio", "global_preference", "wks_quantile", "eps", "accept", "polish", "final_polish", "proxy_vertices", "hierarchy_vertices", "min_hole", "max_hole", "groups", "parts" },
 //!   "timings": { "spectral", "descriptors", "distance", "sampling", "voting", "maps",
 //!                "maps_proxy", "maps_profile", "maps_fmap", "maps_refine", "maps_polish", "maps_compose", "maps_lift", "parts",
 //!                "congruence", "hierarchy", "lift", "characterize", "cluster", "total" },   // seconds
@@ -87,6 +87,7 @@ pub fn to_json(det: &Detection, params: &Params) -> Value {
             "seed": params.seed,
             "restarts": params.restarts,
             "min_score_ratio": params.min_score_ratio,
+            "global_preference": params.global_preference,
             "wks_quantile": params.voting.wks_quantile,
             "eps": params.voting.eps,
             "accept": params.maps.accept,
