@@ -293,6 +293,13 @@ sym_status sym_params_set_restarts(sym_params *params, size_t value);
 sym_status sym_params_set_min_score_ratio(sym_params *params, double value);
 
 /**
+ * A partial symmetry (a map of part of the shape) is reported before a global one only if its
+ * judge's score is more than this many times higher, a finite number ≥ 1 (default 3; 1: by
+ * score alone). Returns `SYM_STATUS_INVALID_ARGUMENT` (settings unchanged) outside the range.
+ */
+sym_status sym_params_set_global_preference(sym_params *params, double value);
+
+/**
  * Good voters: WKS distance below this quantile of sample pairs, in (0, 1] (default 0.2). Returns `SYM_STATUS_INVALID_ARGUMENT` (settings unchanged) outside the range.
  */
 sym_status sym_params_set_wks_quantile(sym_params *params,

@@ -317,6 +317,14 @@ pub extern "C" fn sym_params_set_min_score_ratio(params: *mut sym_params, value:
     set(params, "sym_params_set_min_score_ratio", "0 to 1", (0.0..=1.0).contains(&value), value, |p| p.params.min_score_ratio = value)
 }
 
+/// A partial symmetry (a map of part of the shape) is reported before a global one only if its
+/// judge's score is more than this many times higher, a finite number ≥ 1 (default 3; 1: by
+/// score alone). Returns `SYM_STATUS_INVALID_ARGUMENT` (settings unchanged) outside the range.
+#[no_mangle]
+pub extern "C" fn sym_params_set_global_preference(params: *mut sym_params, value: f64) -> sym_status {
+    set(params, "sym_params_set_global_preference", "a finite number ≥ 1", value.is_finite() && value >= 1.0, value, |p| p.params.global_preference = value)
+}
+
 /// Good voters: WKS distance below this quantile of sample pairs, in (0, 1] (default 0.2). Returns `SYM_STATUS_INVALID_ARGUMENT` (settings unchanged) outside the range.
 #[no_mangle]
 pub extern "C" fn sym_params_set_wks_quantile(params: *mut sym_params, value: f64) -> sym_status {

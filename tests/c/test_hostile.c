@@ -217,6 +217,11 @@ int main(int argc, char **argv) {
     expect("min score ratio -0.1", sym_params_set_min_score_ratio(p, -0.1), SYM_STATUS_INVALID_ARGUMENT, 1);
     expect("min score ratio 0", sym_params_set_min_score_ratio(p, 0.0), SYM_STATUS_OK, 0);
     expect("min score ratio NULL params", sym_params_set_min_score_ratio(NULL, 0.2), SYM_STATUS_NULL_PARAMETER, 1);
+    expect("global preference NaN", sym_params_set_global_preference(p, NAN), SYM_STATUS_INVALID_ARGUMENT, 1);
+    expect("global preference inf", sym_params_set_global_preference(p, INFINITY), SYM_STATUS_INVALID_ARGUMENT, 1);
+    expect("global preference 0.5", sym_params_set_global_preference(p, 0.5), SYM_STATUS_INVALID_ARGUMENT, 1);
+    expect("global preference 1", sym_params_set_global_preference(p, 1.0), SYM_STATUS_OK, 0);
+    expect("global preference NULL params", sym_params_set_global_preference(NULL, 3.0), SYM_STATUS_NULL_PARAMETER, 1);
     expect("proxy off", sym_params_set_proxy_vertices(p, 0), SYM_STATUS_OK, 0);
     expect("proxy 6000", sym_params_set_proxy_vertices(p, 6000), SYM_STATUS_OK, 0);
     expect("valid setter", sym_params_set_groups(p, 0), SYM_STATUS_OK, 0);
