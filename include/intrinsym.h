@@ -391,16 +391,14 @@ size_t sym_vertex_count(const sym_result *result);
 
 /**
  * Fills `*out` with symmetry `index` of `result`, in the report's order: strongest first, a
- * partial symmetry's score counting a third against global ones (0 = what a viewer colours). The pointers in
- * `*out` borrow from `result` and stay valid until [`sym_free`]. `out->struct_size` must be
- * set.
+ * partial symmetry's score counting `sym_params_set_global_preference` (default 3) times less
+ * against global ones (0 = what a viewer colours). The pointers in `*out` borrow from `result`
+ * and stay valid until [`sym_free`]. `out->struct_size` must be set.
  *
  * # Safety
  * `out` must point to a writable `sym_symmetry` whose `struct_size` is initialised.
  */
-sym_status sym_get_map(const sym_result *result,
-                       size_t index,
-                       sym_symmetry *out);
+sym_status sym_get_map(const sym_result *result, size_t index, sym_symmetry *out);
 
 /**
  * Dimension of the continuous family of isometries the shape has: 0 for none (most shapes),

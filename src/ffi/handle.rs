@@ -471,9 +471,9 @@ pub extern "C" fn sym_vertex_count(result: *const sym_result) -> usize {
 }
 
 /// Fills `*out` with symmetry `index` of `result`, in the report's order: strongest first, a
-/// partial symmetry's score counting a third against global ones (0 = what a viewer colours). The pointers in
-/// `*out` borrow from `result` and stay valid until [`sym_free`]. `out->struct_size` must be
-/// set.
+/// partial symmetry's score counting `sym_params_set_global_preference` (default 3) times less
+/// against global ones (0 = what a viewer colours). The pointers in `*out` borrow from `result`
+/// and stay valid until [`sym_free`]. `out->struct_size` must be set.
 ///
 /// # Safety
 /// `out` must point to a writable `sym_symmetry` whose `struct_size` is initialised.

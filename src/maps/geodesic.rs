@@ -710,8 +710,9 @@ mod tests {
 
     /// Geodesic farthest points (the proxy's seeds and the polish's anchors): the start first,
     /// then each vertex the farthest from all chosen before it, as full single-source searches
-    /// give it (the incremental searches are exact), all distinct; and spread evenly: no two chosen vertices (past the start) lie
-    /// closer together than the last gap filled (farthest-point sampling's packing bound).
+    /// give it (the incremental searches are exact), all distinct; and spread evenly: no two
+    /// chosen vertices (past the start) lie closer together than the last gap filled
+    /// (farthest-point sampling's packing bound).
     #[test]
     fn geodesic_farthest_points_are_the_full_searches() {
         let c = shapes::quadruped(4, Pose::Walking, 0.005, 3);

@@ -87,9 +87,9 @@ pub struct MapParams {
     /// than its mirror). Time: ×1.12 on TOSCA, ×1.1–1.3 on the 60k KIDS poses against two.
     pub polish: usize,
     /// Further passes of the polish given to each search's strongest symmetries
-    /// (`final_polish_maps` of them) once the search has ranked its maps (default 8; the `polish` passes of every map come first, and with
-    /// `polish` = 0 there are none of either). See
-    /// [`mod@crate::detect`], "Further polish of the strongest symmetries".
+    /// (`final_polish_maps` of them) once the search has ranked its maps (default 8; the
+    /// `polish` passes of every map come first, and with `polish` = 0 there are none of either).
+    /// See [`mod@crate::detect`], "Further polish of the strongest symmetries".
     pub final_polish: usize,
     /// How many of the search's strongest global symmetries get the `final_polish` passes
     /// (default 2, polished concurrently). Where the strongest map is wrong, the right one is
