@@ -1496,7 +1496,7 @@ fn search(shared: &Shared<'_>, params: &Params, seed: u64, timings: &mut Timings
     if let (true, Some(g)) = (params.parts.enabled, &geodesics) {
         let agd = g.mean_distances(&polish_anchors);
         let globals: Vec<&[i64]> = found.iter().filter(|f| f.dense.global).map(|f| &f.dense.map[..]).collect();
-        let parts = crate::parts::find(g.graph(), &agd, &globals, scale, &params.parts);
+        let parts = crate::parts::find(g.graph(), ctx.positions, &agd, &globals, scale, &params.parts);
         let room = params.max_symmetries.saturating_sub(found.len());
         for m in parts.into_iter().take(room) {
             let distortion = characterize::sample_distortion(&m.dense.map, probes, emb, vinfo.diameter);

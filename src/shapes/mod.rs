@@ -237,10 +237,11 @@ pub fn creature(level: u32, body: [f64; 3], limbs: &[Limb], noise: f64, seed: u6
 }
 
 /// What makes a limb *directed* (not mirror-symmetric front to back, as a real leg is not):
-/// in the rest shape, the front half of its tip is drawn out forward into a toe, then its lower
-/// half is turned about a knee at mid-length so that the foot swings forward. Identical
-/// directed limbs are congruent by a translation (the knee of a front leg and of a hind leg
-/// both point backward), which no reflection of the body reproduces.
+/// in the rest shape its cross-section is round ([`round_limb`]), the front half of its tip is
+/// drawn out forward into a toe, then its lower half is turned about a knee at mid-length so
+/// that the foot swings forward. Identical directed limbs are congruent by a translation below
+/// the hip (the knee of a front leg and of a hind leg both point backward), which no reflection
+/// of the body reproduces.
 #[derive(Clone, Debug)]
 pub struct Directed {
     /// The forward direction (the toe and the swing point this way).
@@ -267,10 +268,14 @@ pub fn creature_with(level: u32, body: [f64; 3], limbs: &[Limb], directed: &[Opt
             let t = theta / l.cap;
             if t < 1.0 {
                 let grow = l.length * (1.0 - smoothstep(t));
+                let directed = directed.get(j).and_then(|d| d.as_ref());
+                if let Some(dir) = directed {
+                    p = round_limb(p, u, body, l, dir, t);
+                }
                 for (x, a) in p.iter_mut().zip(l.axis) {
                     *x += grow * a;
                 }
-                if let Some(Some(dir)) = directed.get(j) {
+                if let Some(dir) = directed {
                     let base = [body[0] * l.direction[0], body[1] * l.direction[1], body[2] * l.direction[2]];
                     p = direct(p, u, base, l, dir, grow / l.length);
                 }
@@ -312,6 +317,27 @@ pub fn creature_with(level: u32, body: [f64; 3], limbs: &[Limb], directed: &[Opt
     let rest_mesh = build(rest.clone(), mesh.triangles.clone());
     let mirror = mirror_map(&rest_mesh, 0);
     Creature { mesh, mirror, limb: limb_of, limbs, rest }
+}
+
+/// A directed limb's cross-section made round: the body point `p` of sphere point `u` at
+/// `t` (its angle from the cap's centre over the cap's radius) is moved, below the limb's
+/// upper part, onto a disc about the cap's centre whose axes are the same for every limb
+/// (forward and lateral), so that identical directed limbs are translates of each other.
+/// Without it a limb's cross-section is its cap scaled by the body's radii (an ellipse 2.8
+/// times longer front to back than across on the directed quadruped's body): a blade whose
+/// front↔back mirror fits it as well as the translation does (session 34).
+fn round_limb(p: [f64; 3], u: [f64; 3], body: [f64; 3], l: &Limb, dir: &Directed, t: f64) -> [f64; 3] {
+    let f = dir.forward;
+    let forward = normalize(std::array::from_fn(|d| f[d] - dot(f, l.axis) * l.axis[d]));
+    let lateral = normalize(cross(l.axis, forward));
+    let centre = [body[0] * l.direction[0], body[1] * l.direction[1], body[2] * l.direction[2]];
+    let radial: [f64; 3] = std::array::from_fn(|d| u[d] - dot(u, l.direction) * l.direction[d]);
+    let phi = dot(radial, forward).atan2(dot(radial, lateral));
+    let radius = l.cap.sin() * body.iter().copied().fold(f64::INFINITY, f64::min);
+    let round: [f64; 3] = std::array::from_fn(|d| centre[d] + radius * t * (phi.cos() * lateral[d] + phi.sin() * forward[d]));
+    // Round below, the body's own surface at the cap's rim.
+    let keep = smoothstep((t - 0.55) / 0.4);
+    std::array::from_fn(|d| keep * p[d] + (1.0 - keep) * round[d])
 }
 
 /// The rest position `p` of a limb vertex (sphere point `u`, at height `h` ∈ [0, 1] of the
