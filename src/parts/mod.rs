@@ -56,8 +56,9 @@
 //! # State (session 34): experimental, off by default (`PartParams::enabled`, CLI `--parts`)
 //!
 //! Measured with `examples/quadruped_report.rs` (`SHAPE=directed|spiked|splayed|lopsided|
-//! ellipsoid`): ordered part pairs whose best reported map has acc@0.1 ≥ 0.8; 2.5k and 10k
-//! vertices (icosphere levels 4 and 5), six noise seeds where issue 15 asks for three.
+//! ellipsoid`; `bench/parts.sh` runs every row): ordered part pairs whose best reported map has
+//! acc@0.1 ≥ 0.8; 2.5k and 10k vertices (icosphere levels 4 and 5), six noise seeds where
+//! issue 15 asks for three.
 //!
 //! | shape | 2.5k: session 33 → **34** | 10k: session 33 → **34** |
 //! |---|---|---|
@@ -84,9 +85,12 @@
 //! choice between candidate maps** (step 3) went from "the best and the best flipped ring pair,
 //! the better intrinsic fit over the region" to up to four ring pairs judged by the extrinsic
 //! fit near the tips. On the blade legs the new choice finds 50 and 53 of 96: it needs parts
-//! that are congruent, which the blades are not. The stage's time (`--parts`, TOSCA, two
-//! rounds): cat0 0.11 → 0.14 s, dog1 0.11 → 0.12 s, centaur1 0.36 → 0.27 s (only the chosen
-//! candidate's map is computed in full); at 10k 0.27 → 0.35 s.
+//! that are congruent, which the blades are not. The stage's time, session 33 → 34, two
+//! rounds each, interleaved: the walking quadruped with 0.5% noise (seeds 1–3) 0.047 → 0.050
+//! s at 2.5k and 0.27 → 0.25 s at 10k (9% and 15% of the detection without the stage); with
+//! `--parts` on TOSCA cat0 0.11 → 0.14 s, dog1 0.11 → 0.12 s, centaur1 0.36 → 0.27 s (only the
+//! chosen candidate's map is computed in full), 21–36% of the detection without it (26–47%
+//! before).
 //!
 //! Measured in session 34 and dropped (the same table, totals of the directed rows at 2.5k /
 //! 10k): two candidates (the best and the best flipped) judged by the same extrinsic fit (59 /
@@ -106,7 +110,11 @@
 //! Not right yet (session 34), for the next engineer: **tips on different features** (the rest
 //! quadruped at 10k: a tip is where the mean geodesic distance peaks, the toe of a front paw
 //! but the pad of a hind one, so their growth profiles disagree and no front↔hind pair is
-//! formed; moving the partner tip, above, forms the pairs but adds spurious ones); **the
+//! formed; moving the partner tip, above, forms the pairs but adds spurious ones: chosen
+//! instead as the one of 24 spread vertices within `tip_radius` whose growth profile agrees
+//! all the way and differs least, it finds the rest quadruped's 12 of 12 at 10k (directed
+//! rows 72 / 74 of 96) but takes the lopsided blob's spurious partial symmetries from 2 to 6 at
+//! 10k and adds 0.5–1.1 s there, 24 searches for each pair that fails); **the
 //! spikes** (0 of 6 at 10k: spikes in a row are a tip distance apart, so the regions, half-way
 //! to the other tip, cover more than a fifth of the body; and intrinsically the spiked body is
 //! nearly front↔back symmetric, a bent spike being an isometry of a straight one, so the
