@@ -822,6 +822,46 @@ mod tests {
         assert!(scratch.iter().all(|x| x.is_infinite()));
     }
 
+    /// The Procrustes fit recovers a rotation with translation, and a reflection (a part's own
+    /// mirror is an acceptable image), from exact pairs.
+    #[test]
+    fn rigid_fit_recovers_rotations_and_reflections() {
+        let points: Vec<[f64; 3]> = (0..20).map(|i| { let t = i as f64; [t.sin(), (1.3 * t).cos(), 0.1 * t] }).collect();
+        let (c, s) = (0.6f64.cos(), 0.6f64.sin());
+        let rotation = [[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]];
+        let mirror = [[-1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+        for r in [rotation, mirror] {
+            let motion = (r, [0.3, -1.0, 2.0]);
+            let pairs: Vec<([f64; 3], [f64; 3])> = points.iter().map(|&x| (x, apply(&motion, x))).collect();
+            let (fit, t) = rigid_fit(&pairs).unwrap();
+            for i in 0..3 {
+                assert!((t[i] - motion.1[i]).abs() < 1e-9);
+                for j in 0..3 {
+                    assert!((fit[i][j] - r[i][j]).abs() < 1e-9, "{fit:?}");
+                }
+            }
+        }
+        assert!(rigid_fit(&[([0.0; 3], [1.0; 3]); 2]).is_none());
+    }
+
+    /// Iterative closest points: a translated copy of a directed shape (an L) is matched with
+    /// no residual from a rough start; a pairing that sends the foot forward onto the foot
+    /// backward (the flipped map) fits a motion that lands the foot off the copy and keeps a
+    /// residual (the rounds refine a start; they do not search all motions).
+    #[test]
+    fn icp_residual_tells_a_translation_from_a_flip() {
+        let mut shape: Vec<[f64; 3]> = (0..30).map(|i| [0.0, -(i as f64) * 0.1, 0.0]).collect();
+        shape.extend((1..12).map(|i| [0.0, -2.9, i as f64 * 0.1]));
+        let target: Vec<[f64; 3]> = shape.iter().map(|p| [p[0] + 5.0, p[1], p[2]]).collect();
+        // The right pairing, each image moved off the shape by up to 0.04 (an edge is 0.1).
+        let shifted: Vec<([f64; 3], [f64; 3])> = shape.iter().zip(&target).enumerate().map(|(i, (&x, &y))| (x, [y[0] + 0.04 * (i as f64).sin(), y[1] + 0.03 * (2.0 * i as f64).cos(), y[2]])).collect();
+        let flipped: Vec<([f64; 3], [f64; 3])> = shape.iter().map(|&x| (x, [x[0] + 5.0, x[1], -x[2]])).collect();
+        let good = icp_residual(&shifted, &target, 8);
+        let bad = icp_residual(&flipped, &target, 8);
+        assert!(good < 1e-9, "translation residual {good}");
+        assert!(bad > 0.1, "flip residual {bad}");
+    }
+
     /// Growth profiles: equal profiles agree to their end, a profile of twice the area agrees
     /// nowhere beyond the slack.
     #[test]

@@ -237,7 +237,7 @@ pub fn creature(level: u32, body: [f64; 3], limbs: &[Limb], noise: f64, seed: u6
 }
 
 /// What makes a limb *directed* (not mirror-symmetric front to back, as a real leg is not):
-/// in the rest shape its cross-section is round ([`round_limb`]), the front half of its tip is
+/// in the rest shape its cross-section is round (`round_limb`), the front half of its tip is
 /// drawn out forward into a toe, then its lower half is turned about a knee at mid-length so
 /// that the foot swings forward. Identical directed limbs are congruent by a translation below
 /// the hip (the knee of a front leg and of a hind leg both point backward), which no reflection
