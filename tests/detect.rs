@@ -630,30 +630,37 @@ fn noisy_directed_quadrupeds_keep_their_mirror() {
 
 /// Issue 15: a quadruped whose identical legs are directed (knee, toe forward) has only its
 /// left–right mirror as a global symmetry; a front leg maps onto a hind leg by a translation
-/// of the leg. With the parts stage (`intrinsym::parts`) most ordered leg pairs are found on
-/// the walking quadruped (12 of 12 measured at this size, 10k vertices; 8 with session 33's
-/// choice between candidate maps, 4 without the stage), as partial symmetries reported after
-/// the global ones, and the first symmetry is still the mirror. (At rest the stage finds 4 of
-/// 12 at this size: the module docs' "State".)
+/// of the leg. With the parts stage (`intrinsym::parts`) most ordered leg pairs are found, at
+/// rest and walking (12 of 12 each measured at this size, 10k vertices; 4 and 8 with session
+/// 33's stage, 4 without the stage), as partial symmetries reported after the global ones,
+/// and the first symmetry is still the mirror.
 #[test]
 fn directed_legs_map_onto_each_other_with_the_parts_stage() {
-    let c = shapes::directed_quadruped(5, Pose::Walking, 0.0, 0);
     let mut params = Params::default();
     params.parts.enabled = true;
-    let d = detect(&c.mesh, &params, &mut |_| true).unwrap();
-    let mut found = 0;
-    let mut cross = 0;
-    for i in 0..4 {
-        for j in (0..4).filter(|&j| j != i) {
-            let best = d.symmetries.iter().map(|s| eval::accuracy(&c.mesh, &s.map, &c.translation_truth(i, j), &[0.1])[0]).fold(0.0, f64::max);
-            if best >= 0.8 {
-                found += 1;
-                // Legs 0, 1 are the front ones.
-                cross += usize::from((i < 2) != (j < 2));
+    // Ordered leg pairs found (acc@0.1 ≥ 0.8), and how many of them are front ↔ hind.
+    let legs = |c: &shapes::Creature, d: &intrinsym::Detection| {
+        let mut found = 0;
+        let mut cross = 0;
+        for i in 0..4 {
+            for j in (0..4).filter(|&j| j != i) {
+                let best = d.symmetries.iter().map(|s| eval::accuracy(&c.mesh, &s.map, &c.translation_truth(i, j), &[0.1])[0]).fold(0.0, f64::max);
+                if best >= 0.8 {
+                    found += 1;
+                    // Legs 0, 1 are the front ones.
+                    cross += usize::from((i < 2) != (j < 2));
+                }
             }
         }
-    }
-    assert!(found >= 10 && cross >= 6, "{found} ordered leg pairs found, {cross} of them front ↔ hind");
+        (found, cross)
+    };
+    let rest = shapes::directed_quadruped(5, Pose::Rest, 0.0, 0);
+    let (found, cross) = legs(&rest, &detect(&rest.mesh, &params, &mut |_| true).unwrap());
+    assert!(found >= 10 && cross >= 6, "at rest: {found} ordered leg pairs found, {cross} of them front ↔ hind");
+    let c = shapes::directed_quadruped(5, Pose::Walking, 0.0, 0);
+    let d = detect(&c.mesh, &params, &mut |_| true).unwrap();
+    let (found, cross) = legs(&c, &d);
+    assert!(found >= 10 && cross >= 6, "walking: {found} ordered leg pairs found, {cross} of them front ↔ hind");
     let mirror = eval::accuracy(&c.mesh, &d.symmetries[0].map, &mirror_truth(&c), &[0.05])[0];
     assert!(mirror > 0.9 && d.symmetries[0].kind == Kind::Global, "first symmetry: mirror acc {mirror}");
     let first_partial = d.symmetries.iter().position(|s| s.kind == Kind::Partial).expect("partial symmetries");
