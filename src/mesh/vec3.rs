@@ -20,3 +20,8 @@ pub(crate) fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
 pub(crate) fn norm(a: [f64; 3]) -> f64 {
     dot(a, a).sqrt()
 }
+
+/// `|a − b|²`.
+pub(crate) fn dist2(a: [f64; 3], b: [f64; 3]) -> f64 {
+    (a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)
+}

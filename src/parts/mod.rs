@@ -227,6 +227,7 @@
 
 use crate::maps::geodesic::EdgeGraph;
 use crate::maps::DenseMap;
+use crate::mesh::vec3::dist2;
 
 /// Parameters of the partial symmetries between repeated parts.
 #[derive(Clone, Debug)]
@@ -302,6 +303,7 @@ pub fn find(graph: &EdgeGraph, positions: &[[f64; 3]], agd: &[f64], globals: &[&
     // A few vertices' worth of slack: near the tip a profile counts only a handful of them.
     let slack = 3.0 * weights.iter().sum::<f64>() / n as f64;
     let mut pairs = Vec::new();
+    let mut scratch = vec![f64::INFINITY; n];
     for i in 0..tips.len() {
         for j in i + 1..tips.len() {
             let (p, q) = (tips[i], tips[j]);
@@ -311,17 +313,16 @@ pub fn find(graph: &EdgeGraph, positions: &[[f64; 3]], agd: &[f64], globals: &[&
             if radius < params.min_reach * rho {
                 continue;
             }
-            let agree = agreeing_radius(&profiles[i], &profiles[j], step, params.profile_tolerance, slack);
-            let close = |a: f64, b: f64| (a - b).abs() <= params.profile_tolerance * a.max(b) + slack;
+            let tolerance = params.profile_tolerance;
+            let agree = agreeing_radius(&profiles[i], &profiles[j], step, tolerance, slack);
             let steps = (radius / step).ceil() as usize;
             let q = if agree >= radius {
                 q
-            } else if profiles[i].iter().zip(&profiles[j]).take(steps).skip(2).all(|(&a, &b)| close(a, b)) {
+            } else if profiles[i].iter().zip(&profiles[j]).take(steps).skip(2).all(|(&a, &b)| areas_agree(a, b, tolerance, slack)) {
                 // The profiles differ within `tip_radius` of the tips only: the tips lie on
                 // different features of the same end (the toe of one paw, the pad of the
                 // other). The partner tip moves to the vertex near it whose profile agrees.
-                let mut scratch = vec![f64::INFINITY; n];
-                match partner_tip(graph, positions, &weights, &profiles[i], q, rho, radius, step, &mut scratch, &close) {
+                match partner_tip(graph, positions, &weights, &profiles[i], q, rho, radius, step, tolerance, slack, &mut scratch) {
                     Some(moved) => moved,
                     None => continue,
                 }
@@ -339,16 +340,16 @@ pub fn find(graph: &EdgeGraph, positions: &[[f64; 3]], agd: &[f64], globals: &[&
 const PARTNER_CANDIDATES: usize = 24;
 
 /// The vertex within `rho` of `q` (among [`PARTNER_CANDIDATES`] spread out) whose growth
-/// profile agrees with `target` (by `close`, step by step) out to `radius` and differs least
-/// from it (the sum of relative differences); `None` when none agrees.
+/// profile agrees with `target` out to `radius` ([`agreeing_radius`]) and differs least from
+/// it (the sum of relative differences); `None` when none agrees.
 #[allow(clippy::too_many_arguments)]
-fn partner_tip(graph: &EdgeGraph, positions: &[[f64; 3]], weights: &[f64], target: &[f64], q: usize, rho: f64, radius: f64, step: f64, scratch: &mut [f64], close: &dyn Fn(f64, f64) -> bool) -> Option<usize> {
+fn partner_tip(graph: &EdgeGraph, positions: &[[f64; 3]], weights: &[f64], target: &[f64], q: usize, rho: f64, radius: f64, step: f64, tolerance: f64, slack: f64, scratch: &mut [f64]) -> Option<usize> {
     let steps = (radius / step).ceil() as usize;
     let near: Vec<usize> = ball(graph, q, rho, scratch).iter().map(|&(v, _)| v as usize).collect();
     let mut best: Option<(f64, usize)> = None;
     for c in spread(&near, positions, PARTNER_CANDIDATES) {
         let pc = profile(&ball(graph, c, radius + step, scratch), weights, step);
-        if pc.len() < steps || !target.iter().zip(&pc).take(steps).all(|(&a, &b)| close(a, b)) {
+        if agreeing_radius(target, &pc, step, tolerance, slack) < radius {
             continue;
         }
         let differ: f64 = target.iter().zip(&pc).take(steps).map(|(&a, &b)| (a - b).abs() / a.max(b).max(f64::MIN_POSITIVE)).sum();
@@ -436,10 +437,16 @@ fn profile(ball: &[(u32, f64)], weights: &[f64], step: f64) -> Vec<f64> {
     out
 }
 
-/// The largest radius (a multiple of `step`) up to which two growth profiles agree: their
-/// areas differ by at most `tolerance` of the larger plus `slack`.
+/// Two growth profiles' areas at one radius agree: they differ by at most `tolerance` of the
+/// larger plus `slack`.
+fn areas_agree(a: f64, b: f64, tolerance: f64, slack: f64) -> bool {
+    (a - b).abs() <= tolerance * a.max(b) + slack
+}
+
+/// The largest radius (a multiple of `step`) up to which two growth profiles agree
+/// ([`areas_agree`] at every step).
 fn agreeing_radius(a: &[f64], b: &[f64], step: f64, tolerance: f64, slack: f64) -> f64 {
-    let k = a.iter().zip(b).take_while(|(x, y)| (*x - *y).abs() <= tolerance * x.max(**y) + slack).count();
+    let k = a.iter().zip(b).take_while(|&(&x, &y)| areas_agree(x, y, tolerance, slack)).count();
     k as f64 * step
 }
 
@@ -511,7 +518,7 @@ fn part_map(graph: &EdgeGraph, positions: &[[f64; 3]], weights: &[f64], p: usize
         let pairs: Vec<([f64; 3], [f64; 3])> = near_a.iter().zip(image.iter().zip(&cost)).filter(|(_, (_, c))| c.is_finite()).map(|(&x, (&y, _))| (positions[a.vertices[x]], positions[b.vertices[y]])).collect();
         icp_residual(&pairs, &points_b, ICP_ROUNDS)
     };
-    let (_, anchored) = variants.into_iter().map(|v| (fit(&v), v)).min_by(|x, y| x.0.total_cmp(&y.0))?;
+    let anchored = if variants.len() == 1 { variants.into_iter().next()? } else { variants.into_iter().map(|v| (fit(&v), v)).min_by(|x, y| x.0.total_cmp(&y.0))?.1 };
     let forward = dense_map(&anchored.cols_a, &anchored.cols_b, &a.from_tip, &b.from_tip, window);
     grow_map(graph, weights, &a, &b, &anchored, forward, radius, globals, scale, params)
 }
@@ -570,10 +577,6 @@ fn rigid_fit(pairs: &[([f64; 3], [f64; 3])]) -> Option<Motion> {
     let r: [[f64; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|j| o[(i, j)]));
     let t = std::array::from_fn(|i| cb[i] - (r[i][0] * ca[0] + r[i][1] * ca[1] + r[i][2] * ca[2]));
     Some((r, t))
-}
-
-fn dist2(a: [f64; 3], b: [f64; 3]) -> f64 {
-    (a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)
 }
 
 /// Anchors of a region pair (step 3 of the module docs): `pairs` of region indices (A, B),

@@ -16,7 +16,7 @@
 //!
 //! Every function returns a validated [`Mesh`].
 
-use crate::mesh::vec3::{cross, dot, norm};
+use crate::mesh::vec3::{cross, dist2, dot, norm};
 use crate::mesh::{Mesh, MeshParams};
 
 fn build(vertices: Vec<[f64; 3]>, triangles: Vec<[u32; 3]>) -> Mesh {
@@ -276,8 +276,7 @@ pub fn creature_with(level: u32, body: [f64; 3], limbs: &[Limb], directed: &[Opt
                     *x += grow * a;
                 }
                 if let Some(dir) = directed {
-                    let base = [body[0] * l.direction[0], body[1] * l.direction[1], body[2] * l.direction[2]];
-                    p = direct(p, u, base, l, dir, grow / l.length);
+                    p = direct(p, u, limb_base(body, l), l, dir, grow / l.length);
                 }
                 // Skinning weight: 1 inside the limb, blending to 0 over its base.
                 weights[v][j] = 1.0 - smoothstep((t - 0.55) / 0.45);
@@ -294,7 +293,7 @@ pub fn creature_with(level: u32, body: [f64; 3], limbs: &[Limb], directed: &[Opt
         if l.bend == 0.0 {
             continue;
         }
-        let base = [body[0] * l.direction[0], body[1] * l.direction[1], body[2] * l.direction[2]];
+        let base = limb_base(body, l);
         for v in 0..n {
             if weights[v][j] > 0.0 {
                 posed[v] = rotate(posed[v], base, l.bend_axis, l.bend * weights[v][j]);
@@ -319,6 +318,19 @@ pub fn creature_with(level: u32, body: [f64; 3], limbs: &[Limb], directed: &[Opt
     Creature { mesh, mirror, limb: limb_of, limbs, rest }
 }
 
+/// Where limb `l` leaves a body of radii `body`: the centre of its cap on the body.
+fn limb_base(body: [f64; 3], l: &Limb) -> [f64; 3] {
+    [body[0] * l.direction[0], body[1] * l.direction[1], body[2] * l.direction[2]]
+}
+
+/// A directed limb's frame across its axis: forward (`dir.forward` made perpendicular to the
+/// axis) and lateral (axis × forward), the same for every limb with the same axis.
+fn limb_frame(l: &Limb, dir: &Directed) -> ([f64; 3], [f64; 3]) {
+    let f = dir.forward;
+    let forward = normalize(std::array::from_fn(|d| f[d] - dot(f, l.axis) * l.axis[d]));
+    (forward, normalize(cross(l.axis, forward)))
+}
+
 /// A directed limb's cross-section made round: the body point `p` of sphere point `u` at
 /// `t` (its angle from the cap's centre over the cap's radius) is moved, below the limb's
 /// upper part, onto a disc about the cap's centre whose axes are the same for every limb
@@ -327,10 +339,8 @@ pub fn creature_with(level: u32, body: [f64; 3], limbs: &[Limb], directed: &[Opt
 /// times longer front to back than across on the directed quadruped's body): a blade whose
 /// front↔back mirror fits it as well as the translation does (session 34).
 fn round_limb(p: [f64; 3], u: [f64; 3], body: [f64; 3], l: &Limb, dir: &Directed, t: f64) -> [f64; 3] {
-    let f = dir.forward;
-    let forward = normalize(std::array::from_fn(|d| f[d] - dot(f, l.axis) * l.axis[d]));
-    let lateral = normalize(cross(l.axis, forward));
-    let centre = [body[0] * l.direction[0], body[1] * l.direction[1], body[2] * l.direction[2]];
+    let (forward, lateral) = limb_frame(l, dir);
+    let centre = limb_base(body, l);
     let radial: [f64; 3] = std::array::from_fn(|d| u[d] - dot(u, l.direction) * l.direction[d]);
     let phi = dot(radial, forward).atan2(dot(radial, lateral));
     let radius = l.cap.sin() * body.iter().copied().fold(f64::INFINITY, f64::min);
@@ -351,13 +361,12 @@ fn direct(mut p: [f64; 3], u: [f64; 3], base: [f64; 3], l: &Limb, dir: &Directed
     // 1 on the front half of the cap beyond a third of its radius, fading to 0 at its centre.
     let w = (dot(u, tangent) / (l.cap / 3.0).sin()).clamp(-1.0, 1.0);
     let toe = dir.toe * l.length * smoothstep((h - 0.5) / 0.35) * w.max(0.0);
-    let f_perp = normalize(std::array::from_fn(|d| f[d] - dot(f, l.axis) * l.axis[d]));
+    let (f_perp, lateral) = limb_frame(l, dir);
     for d in 0..3 {
         p[d] += toe * f_perp[d];
     }
     // The knee: the lower half turns about the lateral axis through the limb's midpoint, the
     // foot swinging forward (blended over 0.4..0.6 of the height).
-    let lateral = normalize(cross(l.axis, f_perp));
     let knee = std::array::from_fn(|d| base[d] + 0.5 * l.length * l.axis[d]);
     rotate(p, knee, lateral, -dir.knee * smoothstep((h - 0.4) / 0.2))
 }
@@ -421,10 +430,6 @@ impl Creature {
         }
         (vs, c)
     }
-}
-
-fn dist2(a: [f64; 3], b: [f64; 3]) -> f64 {
-    (0..3).map(|d| (a[d] - b[d]).powi(2)).sum()
 }
 
 /// Area-weighted unit vertex normals over the mesh's own triangles ([`Mesh::vertex_normals`]).
