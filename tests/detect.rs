@@ -661,6 +661,11 @@ fn directed_legs_map_onto_each_other_with_the_parts_stage() {
     let d = detect(&c.mesh, &params, &mut |_| true).unwrap();
     let (found, cross) = legs(&c, &d);
     assert!(found >= 10 && cross >= 6, "walking: {found} ordered leg pairs found, {cross} of them front ↔ hind");
+    // With 0.5% noise (seed 1: 10 of 12, 8 before session 35's protrusion test let the
+    // walking paws of one side, 0.3·√area apart, pair).
+    let noisy = shapes::directed_quadruped(5, Pose::Walking, 0.005, 1);
+    let (found_noisy, cross_noisy) = legs(&noisy, &detect(&noisy.mesh, &params, &mut |_| true).unwrap());
+    assert!(found_noisy >= 10 && cross_noisy >= 6, "noisy: {found_noisy} ordered leg pairs found, {cross_noisy} of them front ↔ hind");
     let mirror = eval::accuracy(&c.mesh, &d.symmetries[0].map, &mirror_truth(&c), &[0.05])[0];
     assert!(mirror > 0.9 && d.symmetries[0].kind == Kind::Global, "first symmetry: mirror acc {mirror}");
     let first_partial = d.symmetries.iter().position(|s| s.kind == Kind::Partial).expect("partial symmetries");
@@ -676,6 +681,20 @@ fn directed_legs_map_onto_each_other_with_the_parts_stage() {
     let svg = intrinsym::output::report::svg(&d, "directed", Some(&c.mesh.vertices));
     assert_eq!(svg.matches(" partial: ").count(), partial);
     assert!(svg.contains("rgb(230,120,0)") && svg.contains("rgb(30,90,220)"));
+}
+
+/// Issue 15, no spurious parts: the parts stage pairs only the ends of protrusions
+/// (`PartParams::max_fill`), so on a three-axis ellipsoid, whose long and middle ends agree in
+/// growth profile near their tips, it adds no partial symmetry (3 at this size, 10k vertices,
+/// with a part's reach lowered to 1.75 tip radii and no protrusion test).
+#[test]
+fn the_parts_stage_finds_no_parts_on_an_ellipsoid() {
+    let mesh = shapes::ellipsoid(5, [1.0, 0.75, 0.5]);
+    let mut params = Params::default();
+    params.parts.enabled = true;
+    let d = detect(&mesh, &params, &mut |_| true).unwrap();
+    let partial: Vec<usize> = d.symmetries.iter().filter(|s| s.kind == Kind::Partial).map(|s| s.region_size).collect();
+    assert!(partial.is_empty(), "partial symmetries of {partial:?} vertices");
 }
 
 /// The swap of two congruent components, one of them detected on a coarse mesh (the
