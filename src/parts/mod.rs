@@ -115,6 +115,17 @@
 //! without it: cat0 0.146 → 0.130 s (22%), cat1 0.303 → 0.238 s (31%), dog1 0.164 → 0.118 s
 //! (21%), centaur0 0.335 → 0.214 s (32%), centaur1 0.278 → 0.200 s (26%), centaur3 0.437 →
 //! 0.289 s (32%): issue 15's 30% is met on three of these six, missed by 1–2 points on three.
+//! Measured and dropped after that: **choosing between the candidate maps for consistency
+//! with compositions** (repeated parts map onto each other through any third one, so `i → j`
+//! should be `i → k → j` near the tips; every pair with several candidates took the one
+//! agreeing within 0.05·√area with the compositions through the other tips on the most
+//! vertices, summed over compositions as fractions, when it beat the extrinsic fit's choice by
+//! a margin, all pairs at once, one or two rounds). The misses left at 10k are diagonal pairs
+//! whose candidates fit rigidly alike (seed 4: 0.0089 against 0.0092), and the compositions
+//! of the right side and front↔hind maps tell them apart, but at 2.5k the compositions carry
+//! wrong maps too: directed rows at 2.5k / 10k 72 / 84 before, 66 / 86 (margin half a
+//! composition, two rounds), 68 / 84 (one round), 70 / 88 (margin one), 70 / 84 (margin 1.5):
+//! every setting loses a 2.5k row (noisy seed 6: 8 → 4–6).
 //!
 //! Session 34 changed three things. **The generated directed limbs are round** (`shapes`'
 //! `round_limb`): until then a limb's cross-section was its cap on the ellipsoid body scaled
