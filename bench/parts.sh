@@ -6,10 +6,11 @@
 #   bash bench/parts.sh [EXAMPLE_BINARY]
 #
 # Each field is `row:found/partials/unmatched`: ordered pairs whose best reported map has
-# acc@0.1 >= 0.8, partial symmetries reported, and how many of those map no ordered pair right. Rows: the directed quadruped at rest, walking, walking with
-# 0.5% noise (seeds 1-6); the spikes with 0.5% noise (seeds 1-3) and clean; for the lopsided
-# blob and the ellipsoid (no repeated parts) only the partial symmetries reported (run the
-# example with PARTS=0 for those the global stages report themselves).
+# acc@0.1 >= 0.8, partial symmetries reported, and how many of those map no ordered pair
+# right. Rows: the directed quadruped at rest, walking, walking with 0.5% noise (seeds 1-6);
+# the spikes with 0.5% noise (seeds 1-3) and clean; for the lopsided blob and the ellipsoid
+# (no repeated parts) only the partial symmetries reported (run the example with PARTS=0 for
+# those the global stages report themselves).
 EX=${1:-target/release/examples/quadruped_report}
 run() { "$@" 2>/dev/null | tail -1 | sed -E 's/ordered pairs found: ([0-9]+) of ([0-9]+).*reported: ([0-9]+), mapping no part pair right: ([0-9]+)/\1\/\3\/\4/'; }
 for level in 4 5; do
