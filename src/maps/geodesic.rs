@@ -246,6 +246,61 @@ impl EdgeGraph {
         d
     }
 
+    /// [`EdgeGraph::search`] with the bucket queue of [`EdgeGraph::distances`] where the edge
+    /// lengths allow (else the heap): the same vertices at the same distances, to the bit, but
+    /// `settled` is called in order of buckets (`width` apart), not of exact distance, so a
+    /// caller that needs them nearest first sorts them. Truncated searches of the parts stage
+    /// spent half their time in the heap.
+    pub(crate) fn search_unordered(&self, src: usize, radius: f64, scratch: &mut [f64], settled: &mut dyn FnMut(usize, f64) -> bool) {
+        let Some((width, count)) = self.buckets else {
+            return self.search(src, radius, scratch, settled);
+        };
+        const NONE: u32 = u32::MAX;
+        let mask = count - 1;
+        let inv = 1.0 / width;
+        // Each bucket a linked list through `entries` (vertex, distance when pushed, next); an
+        // entry whose distance is above the vertex's current one is stale and skipped.
+        let mut head = vec![NONE; count];
+        let mut entries: Vec<(u32, f64, u32)> = vec![(src as u32, 0.0, NONE)];
+        let mut touched = vec![src as u32];
+        scratch[src] = 0.0;
+        head[0] = 0;
+        let (mut live, mut current) = (1usize, 0usize);
+        'search: while live > 0 {
+            let mut e = std::mem::replace(&mut head[current & mask], NONE);
+            current += 1;
+            while e != NONE {
+                let (v, dv, next) = entries[e as usize];
+                e = next;
+                live -= 1;
+                let v = v as usize;
+                if dv > scratch[v] {
+                    continue;
+                }
+                if !settled(v, dv) {
+                    break 'search;
+                }
+                for k in self.off[v]..self.off[v + 1] {
+                    let u = self.nbr[k] as usize;
+                    let nd = dv + self.len[k];
+                    if nd <= radius && nd < scratch[u] {
+                        if scratch[u] == f64::INFINITY {
+                            touched.push(u as u32);
+                        }
+                        scratch[u] = nd;
+                        let slot = ((nd * inv) as i64 as usize) & mask;
+                        entries.push((u as u32, nd, head[slot]));
+                        head[slot] = (entries.len() - 1) as u32;
+                        live += 1;
+                    }
+                }
+            }
+        }
+        for v in touched {
+            scratch[v as usize] = f64::INFINITY;
+        }
+    }
+
     /// Dijkstra from `src` up to `radius` (a binary heap), calling `settled(vertex, distance)`
     /// in order of distance until it returns `false`. `scratch` (one entry per vertex) is all
     /// infinite on entry and on return, so a caller searching many small balls pays for the
@@ -692,6 +747,39 @@ mod tests {
 
     /// The bucket queue gives the heap's distances to the bit, on a noisy, posed quadruped
     /// (uneven edges) from several sources; a mesh with a near-zero edge uses the heap.
+    #[test]
+    fn unordered_search_is_the_heap_search() {
+        let c = shapes::quadruped(4, Pose::Walking, 0.005, 3);
+        let g = EdgeGraph::new(&c.mesh.vertices, c.mesh.adjacency());
+        assert!(g.buckets.is_some());
+        let n = c.mesh.num_vertices();
+        let mut scratch = vec![f64::INFINITY; n];
+        for (src, radius) in [(0usize, 0.3), (17, 1.0), (1000, f64::INFINITY), (2561, 0.15)] {
+            let collect = |unordered: bool, scratch: &mut [f64]| {
+                let mut out = Vec::new();
+                let mut keep = |v: usize, d: f64| {
+                    out.push((v, d.to_bits()));
+                    true
+                };
+                if unordered { g.search_unordered(src, radius, scratch, &mut keep) } else { g.search(src, radius, scratch, &mut keep) }
+                out.sort_unstable();
+                out
+            };
+            let heap = collect(false, &mut scratch);
+            assert!(heap.len() > 1);
+            assert_eq!(collect(true, &mut scratch), heap, "source {src}, radius {radius}");
+            assert!(scratch.iter().all(|x| x.is_infinite()));
+        }
+        // Stopped by the caller after 10 vertices: 10 settled, the scratch clean.
+        let mut count = 0;
+        g.search_unordered(5, f64::INFINITY, &mut scratch, &mut |_, _| {
+            count += 1;
+            count < 10
+        });
+        assert_eq!(count, 10);
+        assert!(scratch.iter().all(|x| x.is_infinite()));
+    }
+
     #[test]
     fn bucket_search_is_the_heap_search() {
         let c = shapes::quadruped(4, Pose::Walking, 0.005, 3);
