@@ -280,24 +280,33 @@ impl EdgeGraph {
                 if !settled(v, dv) {
                     break 'search;
                 }
-                for k in self.off[v]..self.off[v + 1] {
-                    let u = self.nbr[k] as usize;
-                    let nd = dv + self.len[k];
-                    if nd <= radius && nd < scratch[u] {
-                        if scratch[u] == f64::INFINITY {
-                            touched.push(u as u32);
-                        }
-                        scratch[u] = nd;
-                        let slot = ((nd * inv) as i64 as usize) & mask;
-                        entries.push((u as u32, nd, head[slot]));
-                        head[slot] = (entries.len() - 1) as u32;
-                        live += 1;
-                    }
-                }
+                self.relax(v, dv, radius, scratch, &mut touched, |u, nd| {
+                    let slot = ((nd * inv) as i64 as usize) & mask;
+                    entries.push((u as u32, nd, head[slot]));
+                    head[slot] = (entries.len() - 1) as u32;
+                    live += 1;
+                });
             }
         }
         for v in touched {
             scratch[v as usize] = f64::INFINITY;
+        }
+    }
+
+    /// One relaxation step of the truncated searches: every neighbour `u` of `v` (settled at
+    /// `dv`) that `dv + |vu|` brings nearer, within `radius`, gets that distance in `scratch`
+    /// (first-touched vertices listed in `touched`, to reset) and is handed to `queue`.
+    fn relax(&self, v: usize, dv: f64, radius: f64, scratch: &mut [f64], touched: &mut Vec<u32>, mut queue: impl FnMut(usize, f64)) {
+        for k in self.off[v]..self.off[v + 1] {
+            let u = self.nbr[k] as usize;
+            let nd = dv + self.len[k];
+            if nd <= radius && nd < scratch[u] {
+                if scratch[u] == f64::INFINITY {
+                    touched.push(u as u32);
+                }
+                scratch[u] = nd;
+                queue(u, nd);
+            }
         }
     }
 
@@ -319,17 +328,7 @@ impl EdgeGraph {
             if !settled(v, dv) {
                 break;
             }
-            for e in self.off[v]..self.off[v + 1] {
-                let u = self.nbr[e] as usize;
-                let nd = dv + self.len[e];
-                if nd <= radius && nd < scratch[u] {
-                    if scratch[u] == f64::INFINITY {
-                        touched.push(u as u32);
-                    }
-                    scratch[u] = nd;
-                    heap.push(Reverse((nd.to_bits(), u as u32)));
-                }
-            }
+            self.relax(v, dv, radius, scratch, &mut touched, |u, nd| heap.push(Reverse((nd.to_bits(), u as u32))));
         }
         for v in touched {
             scratch[v as usize] = f64::INFINITY;
