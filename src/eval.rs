@@ -15,6 +15,7 @@ use std::collections::BinaryHeap;
 
 use crate::maps::geodesic::EdgeGraph;
 use crate::mesh::Mesh;
+use crate::mesh::vec3::dist2;
 
 #[derive(PartialEq)]
 struct Item(f64, u32);
@@ -51,7 +52,7 @@ impl Geodesics {
         // Every edge path is at least as long as the straight segment: a pair farther apart
         // than `limit` cannot be reached, and needs no search (most pairs of a wrong map).
         let (p, q) = (self.points[a], self.points[b]);
-        if ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) + (p[2] - q[2]).powi(2)).sqrt() > limit {
+        if dist2(p, q).sqrt() > limit {
             return f64::INFINITY;
         }
         for &t in &self.touched {

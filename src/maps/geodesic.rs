@@ -80,6 +80,7 @@ use std::collections::{BinaryHeap, HashMap};
 use std::sync::{Arc, Mutex};
 
 use super::{Context, DenseMap, MapParams};
+use crate::mesh::vec3::dist2;
 
 /// Edge graph of a mesh with edge lengths (CSR): the graph of every Dijkstra search here and of
 /// the evaluation's geodesics ([`crate::eval::Geodesics`]).
@@ -87,6 +88,8 @@ pub struct EdgeGraph {
     pub(crate) off: Vec<usize>,
     pub(crate) nbr: Vec<u32>,
     pub(crate) len: Vec<f64>,
+    /// The mean of `len`.
+    mean_len: f64,
     /// Width and number of the circular buckets of [`EdgeGraph::distances`] (`None`: a heap).
     buckets: Option<(f64, usize)>,
 }
@@ -105,7 +108,7 @@ impl EdgeGraph {
         for v in 0..off.len() - 1 {
             for &u in &nbr[off[v]..off[v + 1]] {
                 let q = p[u as usize];
-                len.push(((p[v][0] - q[0]).powi(2) + (p[v][1] - q[1]).powi(2) + (p[v][2] - q[2]).powi(2)).sqrt());
+                len.push(dist2(p[v], q).sqrt());
             }
         }
         let (min, max) = len.iter().fold((f64::INFINITY, 0.0f64), |(a, b), &l| (a.min(l), b.max(l)));
@@ -113,7 +116,13 @@ impl EdgeGraph {
         // to hold every distance up to one longest edge ahead.
         let width = min * (1.0 - 1e-6);
         let buckets = (width > 0.0 && (max / width).is_finite() && max / width < MAX_BUCKETS as f64).then(|| (width, ((max / width).ceil() as usize + 2).next_power_of_two()));
-        EdgeGraph { off, nbr, len, buckets }
+        let mean_len = len.iter().sum::<f64>() / len.len().max(1) as f64;
+        EdgeGraph { off, nbr, len, mean_len, buckets }
+    }
+
+    /// The mean edge length.
+    pub(crate) fn mean_length(&self) -> f64 {
+        self.mean_len
     }
 
     /// Dijkstra distances from `src` to every vertex.
@@ -735,7 +744,7 @@ mod tests {
         let d0 = g.distances(0);
         let p = &c.mesh.vertices;
         for v in 0..c.mesh.num_vertices() {
-            let straight = ((p[v][0] - p[0][0]).powi(2) + (p[v][1] - p[0][1]).powi(2) + (p[v][2] - p[0][2]).powi(2)).sqrt();
+            let straight = dist2(p[v], p[0]).sqrt();
             assert!(d0[v].is_finite() && d0[v] >= straight - 1e-12, "vertex {v}: {} < {straight}", d0[v]);
         }
         // Symmetric: d(0, v) = d(v, 0).

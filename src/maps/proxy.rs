@@ -41,6 +41,7 @@ use super::geodesic::EdgeGraph;
 use super::DenseMap;
 use crate::distance::BiharmonicEmbedding;
 use crate::mesh::Mesh;
+use crate::mesh::vec3::dist2;
 use crate::spectral::Eigenbasis;
 
 /// A mesh needs a proxy when it has more than this many times `proxy_vertices` vertices.
@@ -164,7 +165,7 @@ pub(crate) fn lift(
     let n = owner.len();
     let adjacency = mesh_adjacency;
     let (coff, cnbr) = seed_adjacency;
-    let d = |a: &[f64; 3], b: &[f64; 3]| ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt();
+    let d = |a: &[f64; 3], b: &[f64; 3]| dist2(*a, *b).sqrt();
     // The cells' vertices (counting sort by owner).
     let cells = seeds.len();
     let mut off = vec![0usize; cells + 1];
@@ -388,7 +389,7 @@ mod tests {
         // The proxy map is right to a cell; the lift must stay within that and beat the
         // piecewise-constant lift (every vertex to its cell's image seed).
         let x = &c.mesh.vertices;
-        let d = |a: usize, b: usize| ((x[a][0] - x[b][0]).powi(2) + (x[a][1] - x[b][1]).powi(2) + (x[a][2] - x[b][2]).powi(2)).sqrt();
+        let d = |a: usize, b: usize| dist2(x[a], x[b]).sqrt();
         let radius = (basis.area / (std::f64::consts::PI * p.len() as f64)).sqrt();
         let err: Vec<f64> = (0..n).map(|v| d(lifted.image[v], c.mirror[v] as usize)).collect();
         let constant: f64 = (0..n).map(|v| d(p.seeds[image_of(v)], c.mirror[v] as usize)).sum::<f64>() / n as f64;

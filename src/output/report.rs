@@ -8,6 +8,7 @@ use std::fmt::Write;
 
 use super::PALETTE;
 use crate::detect::Detection;
+use crate::mesh::vec3::dist2;
 
 fn rgb(c: [u8; 3]) -> String {
     format!("rgb({},{},{})", c[0], c[1], c[2])
@@ -99,7 +100,6 @@ fn regions(s: &mut String, det: &Detection, which: &[usize], vertices: &[[f64; 3
     let span = (hi[u] - lo[u]).max(hi[v] - lo[v]).max(1e-12);
     let at = |p: &[f64; 3]| ((p[u] - lo[u]) / span * (cell - 10.0) + 5.0, (hi[v] - p[v]) / span * (cell - 10.0) + 5.0);
     let stride = vertices.len().div_ceil(4000).max(1);
-    let d2 = |a: &[f64; 3], b: &[f64; 3]| (0..3).map(|d| (a[d] - b[d]).powi(2)).sum::<f64>();
     for (slot, &i) in which.iter().enumerate() {
         let sym = &det.symmetries[i];
         let (ox, oy) = (20.0 + (slot % cols) as f64 * (cell + 30.0), top + (slot / cols) as f64 * (cell + 60.0));
@@ -112,7 +112,7 @@ fn regions(s: &mut String, det: &Detection, which: &[usize], vertices: &[[f64; 3
             let m = sym.map[w];
             let colour = if m < 0 || m as usize >= vertices.len() {
                 "rgb(200,200,200)"
-            } else if d2(p, src) - d2(p, dst) <= d2(&vertices[m as usize], src) - d2(&vertices[m as usize], dst) {
+            } else if dist2(*p, *src) - dist2(*p, *dst) <= dist2(vertices[m as usize], *src) - dist2(vertices[m as usize], *dst) {
                 "rgb(230,120,0)"
             } else {
                 "rgb(30,90,220)"

@@ -631,7 +631,7 @@ fn part_map(graph: &EdgeGraph, positions: &[[f64; 3]], weights: &[f64], p: usize
     let (residual, anchored) = variants.into_iter().map(|v| (fit(&v), v)).min_by(|x, y| x.0.total_cmp(&y.0))?;
     // Repeated parts are congruent near their tips: a map that fits no rigid motion there
     // within the mesh's resolution is not between repeated parts (a leg onto a head or a tail).
-    let edge = graph.len.iter().sum::<f64>() / graph.len.len().max(1) as f64;
+    let edge = graph.mean_length();
     if residual > params.max_rigid_residual * edge {
         return None;
     }
@@ -711,7 +711,7 @@ fn anchor_pairs(graph: &EdgeGraph, a: &Region, b: &Region, radius: f64, params: 
     let col_a = |s: usize, scratch: &mut [f64]| column(graph, s, far, &a.local, a.len(), scratch);
     let col_b = |s: usize, scratch: &mut [f64]| column(graph, s, far, &b.local, b.len(), scratch);
     // The ring at half the radius: its width a few edges.
-    let edge = graph.len.iter().sum::<f64>() / graph.len.len().max(1) as f64;
+    let edge = graph.mean_length();
     let ring_radius = 0.5 * radius;
     let width = (2.0 * edge).max(0.05 * radius);
     let ring = |r: &Region| -> Vec<usize> { (0..r.len()).filter(|&i| (r.from_tip[i] - ring_radius).abs() <= width).collect() };

@@ -512,8 +512,7 @@ pub fn spiked(level: u32, noise: f64, seed: u64) -> Creature {
 pub fn star_symmetries(c: &Creature, arms: usize) -> Vec<(String, Vec<u32>)> {
     let p = &c.rest;
     let nearest = |q: [f64; 3]| -> u32 {
-        let d2 = |a: &[f64; 3]| (a[0] - q[0]).powi(2) + (a[1] - q[1]).powi(2) + (a[2] - q[2]).powi(2);
-        (0..p.len()).min_by(|&i, &j| d2(&p[i]).total_cmp(&d2(&p[j]))).unwrap_or(0) as u32
+        (0..p.len()).min_by(|&i, &j| dist2(p[i], q).total_cmp(&dist2(p[j], q))).unwrap_or(0) as u32
     };
     let mut out = Vec::new();
     for flip in [false, true] {
@@ -631,8 +630,7 @@ mod tests {
         (0..p.len())
             .map(|v| {
                 let q = [sx * p[v][0], p[v][1], sz * p[v][2]];
-                let d2 = |a: &[f64; 3]| (a[0] - q[0]).powi(2) + (a[1] - q[1]).powi(2) + (a[2] - q[2]).powi(2);
-                (0..p.len()).min_by(|&a, &b| d2(&p[a]).total_cmp(&d2(&p[b]))).unwrap() as i64
+                (0..p.len()).min_by(|&a, &b| dist2(p[a], q).total_cmp(&dist2(p[b], q))).unwrap() as i64
             })
             .collect()
     }
