@@ -960,15 +960,15 @@ fn dense_map_at(xs: &[usize], cols_a: &[Vec<f64>], cols_b: &[Vec<f64>], tip_a: &
         let mid = tip_b.partition_point(|&d| d < tip_a[x]).clamp(lo, hi);
         for y in outwards(lo, mid, hi) {
             let rb = &tb[y * m..(y + 1) * m];
-            if full_a && full_b[y] {
-                // The same comparison as below (`sum / m < cost`), skipped only when a partial
-                // sum already exceeds the best sum (with a margin for rounding).
+            let c = if full_a && full_b[y] {
+                // Every anchor reaches both: the mean over all of them, abandoned once the
+                // partial sum exceeds the best sum (with a margin for rounding).
                 let limit = cost[i] * m as f64 * (1.0 + 1e-9);
                 let mut sum = 0.0;
                 let mut beaten = false;
-                for (u4, w4) in ra.chunks(4).zip(rb.chunks(4)) {
-                    sum += u4.iter().zip(w4).map(|(&u, &w)| (u - w).abs()).sum::<f64>();
-                    if sum > limit {
+                for (k, (&u, &w)) in ra.iter().zip(rb).enumerate() {
+                    sum += (u - w).abs();
+                    if k % 4 == 3 && sum > limit {
                         beaten = true;
                         break;
                     }
@@ -976,19 +976,23 @@ fn dense_map_at(xs: &[usize], cols_a: &[Vec<f64>], cols_b: &[Vec<f64>], tip_a: &
                 if beaten {
                     continue;
                 }
-            }
-            let (mut sum, mut used) = (0.0, 0usize);
-            for (&u, &w) in ra.iter().zip(rb) {
-                let ok = u.is_finite() & w.is_finite();
-                sum += if ok { (u - w).abs() } else { 0.0 };
-                used += usize::from(ok);
-            }
-            if used * 2 >= m {
-                let c = sum / used as f64;
-                if c < cost[i] || (c == cost[i] && y < image[i]) {
-                    cost[i] = c;
-                    image[i] = y;
+                sum / m as f64
+            } else {
+                // The anchors reaching both, if they are at least half of them.
+                let (mut sum, mut used) = (0.0, 0usize);
+                for (&u, &w) in ra.iter().zip(rb) {
+                    let ok = u.is_finite() & w.is_finite();
+                    sum += if ok { (u - w).abs() } else { 0.0 };
+                    used += usize::from(ok);
                 }
+                if used * 2 < m {
+                    continue;
+                }
+                sum / used as f64
+            };
+            if c < cost[i] || (c == cost[i] && y < image[i]) {
+                cost[i] = c;
+                image[i] = y;
             }
         }
     }
