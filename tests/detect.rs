@@ -689,6 +689,28 @@ fn directed_legs_map_onto_each_other_with_the_parts_stage() {
     assert!(svg.contains("rgb(230,120,0)") && svg.contains("rgb(30,90,220)"));
 }
 
+/// Issue 15, step 6 of the parts stage (`PartParams::compose`): at 2.5k vertices the directed
+/// quadruped at rest has 10 of its 12 ordered leg pairs mapped directly (a diagonal pair's tips
+/// disagree in growth profile); the left–right mirror carries a front↔hind map to the diagonal,
+/// and all 12 are found, with no partial symmetry that maps no leg pair right.
+#[test]
+fn the_mirror_carries_leg_maps_to_the_diagonal_pairs() {
+    let c = shapes::directed_quadruped(4, Pose::Rest, 0.0, 0);
+    let ordered = |compose: bool| {
+        let mut params = Params::default();
+        params.parts.enabled = true;
+        params.parts.compose = compose;
+        let d = detect(&c.mesh, &params, &mut |_| true).unwrap();
+        let acc = |s: &intrinsym::Symmetry, i: usize, j: usize| eval::accuracy(&c.mesh, &s.map, &c.translation_truth(i, j), &[0.1])[0];
+        let found = (0..4).flat_map(|i| (0..4).filter(move |&j| j != i).map(move |j| (i, j))).filter(|&(i, j)| d.symmetries.iter().any(|s| acc(s, i, j) >= 0.8)).count();
+        let wrong = d.symmetries.iter().filter(|s| s.kind == Kind::Partial && !(0..4).any(|i| (0..4).filter(|&j| j != i).any(|j| acc(s, i, j) >= 0.8))).count();
+        (found, wrong)
+    };
+    assert_eq!(ordered(false).0, 10, "direct maps only");
+    let (found, wrong) = ordered(true);
+    assert_eq!((found, wrong), (12, 0), "with the compositions: ordered pairs found, wrong partial symmetries");
+}
+
 /// Issue 15, no spurious parts: the parts stage pairs only the ends of protrusions
 /// (`PartParams::max_fill`), so on a three-axis ellipsoid, whose long and middle ends agree in
 /// growth profile near their tips, it adds no partial symmetry (3 at this size, 10k vertices,
