@@ -110,7 +110,16 @@
 //! unreported rotation composed its spurious pair into two more (2 → 4 at 10k); without the
 //! fixed-set rule, head and tail maps composed into wrong ones (8 directed rows at 10k: 17
 //! wrong partial symmetries instead of 14). The spikes are unchanged: their only global
-//! symmetry maps each spike onto itself. Still unmet: 2.5k noisy seed 1 (4 of 12: all 6 of
+//! symmetry maps each spike onto itself. Measured and dropped: a composed map *replacing* a
+//! direct one that relates the same parts when its rigid-fit residual near the tips is lower
+//! (directed rows 78 → 80 of 96 at 2.5k, 89 → 90 at 10k, wrong partial symmetries 20 → 19
+//! and 14 → 11, but the noisy seeds 1/2/3 at 10k 10/12/12 → 12/10/11 and walking 12 →
+//! 11: near the tips the more rigid map is not always the more precise one; the residual over
+//! whole regions, or three quarters of them: 81 and 85, 80 and 88). With `--parts`, TOSCA
+//! (the CLI, interleaved, two rounds, fastest): 1–4 more partial symmetries on 13 of the 24
+//! animals, none on the people or on FAUST tr_reg_000–009, no global one changed; the stage
+//! ×1.01–1.15 (cat0 0.097 → 0.098 s, centaur0 0.170 → 0.180 s, horse7 0.260 → 0.286 s), at
+//! most 26% of the detection without it (centaur0). Still unmet: 2.5k noisy seed 1 (4 of 12: all 6 of
 //! its partial symmetries are wrong, so there is nothing right to compose) and walking (8),
 //! the spikes (traced in session 35 below; at 10k, 0.5% noise seed 1, the front↔back pair's
 //! regions reach half-way between the outer spikes and cover 21% of the surface, over
