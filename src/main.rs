@@ -10,7 +10,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
 
-use clap::{Parser, Subcommand, ValueEnum};
+use clap::{CommandFactory, Parser, Subcommand, ValueEnum};
 use intrinsym::mesh::{read_mesh, write_off, ComponentPolicy};
 use intrinsym::{detect, shapes, Eigenbasis, EigenParams, Mesh, MeshParams, Params};
 
@@ -135,9 +135,11 @@ enum Command {
         shape: Shape,
         /// Output file (.off).
         output: PathBuf,
-        /// Size: subdivision level (icosphere, needle-sphere) or grid size (torus: 3·size² vertices).
-        #[arg(long, default_value_t = 34)]
-        size: usize,
+        /// Size: the icosphere's subdivision level for every shape but the torus (0–8, default
+        /// 5: 10,242 vertices for the sphere, 655,362 at 8), or the torus's grid size (3–1000,
+        /// default 34: 3·size² vertices).
+        #[arg(long)]
+        size: Option<usize>,
         /// For the quadrupeds: also write the true left–right map as `x sym_x` lines.
         #[arg(long)]
         truth: Option<PathBuf>,
@@ -164,7 +166,15 @@ enum Shape {
 
 fn main() -> ExitCode {
     intrinsym::ffi::process::default_sigpipe();
-    match run(Cli::parse()) {
+    let cli = Cli::parse();
+    if let Command::Generate { shape, size: Some(size), .. } = &cli.command {
+        let (range, what) = size_range(*shape);
+        if !range.contains(size) {
+            let message = format!("--size {size} is out of range for this shape: {what} from {} to {}", range.start(), range.end());
+            Cli::command().error(clap::error::ErrorKind::ValueValidation, message).exit();
+        }
+    }
+    match run(cli) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("intrinsym: {e}");
@@ -417,6 +427,7 @@ fn run(cli: Cli) -> Result<(), intrinsym::Error> {
             }
         }
         Command::Generate { shape, output, size, truth } => {
+            let size = generated_size(shape, size);
             let creature = |pose| shapes::quadruped(size as u32, pose, 0.0, 0);
             let (mesh, mirror) = match shape {
                 Shape::Icosphere => (shapes::icosphere(size as u32), None),
@@ -452,6 +463,24 @@ fn run(cli: Cli) -> Result<(), intrinsym::Error> {
 }
 
 /// A number in [0, 1] (clap names the option in its error).
+/// The sizes `generate` accepts for a shape, and what the size is: the torus's grid (3·size²
+/// vertices), the others' icosphere level (a level adds a factor of four: 8 gives 655,362
+/// vertices, 9 would need about 2 GiB for the mesh alone).
+fn size_range(shape: Shape) -> (std::ops::RangeInclusive<usize>, &'static str) {
+    match shape {
+        Shape::Torus => (3..=1000, "a grid size"),
+        _ => (0..=8, "an icosphere level"),
+    }
+}
+
+/// `generate`'s size: the one given (checked in `main`) or the shape's default.
+fn generated_size(shape: Shape, size: Option<usize>) -> usize {
+    size.unwrap_or(match shape {
+        Shape::Torus => 34,
+        _ => 5,
+    })
+}
+
 fn fraction(text: &str) -> Result<f64, String> {
     match text.parse::<f64>() {
         Ok(x) if (0.0..=1.0).contains(&x) => Ok(x),
