@@ -35,19 +35,19 @@ enum Command {
         #[arg(long)]
         ply: Option<PathBuf>,
         /// Write a picture of the symmetry space and of each functional map (.svg or .html).
-        #[arg(long)]
+        #[arg(long, value_parser = report_path)]
         report: Option<PathBuf>,
-        /// Eigenpairs of the Laplace–Beltrami operator.
-        #[arg(short, long, default_value_t = 100)]
+        /// Eigenpairs of the Laplace–Beltrami operator, 3 to 1000.
+        #[arg(short, long, default_value_t = 100, value_parser = eigenpairs)]
         k: usize,
-        /// Farthest-point samples (the paper uses 20–100).
-        #[arg(long, default_value_t = 64)]
+        /// Farthest-point samples, 8 to 1000 (the paper uses 20–100).
+        #[arg(long, default_value_t = 64, value_parser = sample_count)]
         samples: usize,
         /// Random seed (first sample, eigensolver start).
         #[arg(long, default_value_t = 0)]
         seed: u64,
-        /// Further searches from other first samples (seeds seed+1, seed+2, …) while the strongest symmetry found scores below 0.4; their symmetries are pooled (0: one search).
-        #[arg(long, default_value_t = 2)]
+        /// Further searches from other first samples (seeds seed+1, seed+2, …) while the strongest symmetry found scores below 0.4; their symmetries are pooled, 0 to 8 (0: one search).
+        #[arg(long, default_value_t = 2, value_parser = restart_count)]
         restarts: usize,
         /// Leave out symmetries whose score is below this fraction of the strongest one's, in [0, 1] (0: report every one found).
         #[arg(long, default_value_t = 0.1, value_parser = fraction)]
@@ -55,14 +55,14 @@ enum Command {
         /// Report a partial symmetry before a global one only if it scores more than this many times higher, ≥ 1 (1: rank by score alone).
         #[arg(long, default_value_t = 3.0, value_parser = at_least_one)]
         global_preference: f64,
-        /// Good voters: WKS distance below this quantile of all sample pairs.
-        #[arg(long, default_value_t = 0.2)]
+        /// Good voters: WKS distance below this quantile of all sample pairs, in (0, 1].
+        #[arg(long, default_value_t = 0.2, value_parser = positive_fraction)]
         wks_quantile: f64,
-        /// Voting tolerance ε, fraction of the biharmonic diameter.
-        #[arg(long, default_value_t = 0.04)]
+        /// Voting tolerance ε, fraction of the biharmonic diameter, in (0, 0.5].
+        #[arg(long, default_value_t = 0.04, value_parser = tolerance)]
         eps: f64,
-        /// Region tolerance: mean distance mismatch as a fraction of the diameter.
-        #[arg(long, default_value_t = 0.03)]
+        /// Region tolerance: mean distance mismatch as a fraction of the diameter, in (0, 0.5].
+        #[arg(long, default_value_t = 0.03, value_parser = tolerance)]
         accept: f64,
         /// Passes of the geodesic polish of every map (0 disables it).
         #[arg(long, default_value_t = 4)]
@@ -78,20 +78,22 @@ enum Command {
         #[arg(long, default_value_t = 0.03, value_parser = non_negative)]
         curvature_weight: f64,
         /// On meshes of more than 1.5 times this many vertices, make the maps on a proxy of this
-        /// many vertices and lift them to every vertex (0: always on the whole mesh).
-        #[arg(long, default_value_t = 6000)]
+        /// many vertices and lift them to every vertex; 0 (always on the whole mesh) or 1000
+        /// to 1000000.
+        #[arg(long, default_value_t = 6000, value_parser = vertex_budget)]
         proxy_vertices: usize,
         /// On a component of more than 4 times this many vertices, detect on a coarse mesh of
-        /// this many vertices and lift the maps to every vertex (0: always at full resolution).
-        #[arg(long, default_value_t = 6000)]
+        /// this many vertices and lift the maps to every vertex; 0 (always at full resolution)
+        /// or 1000 to 1000000.
+        #[arg(long, default_value_t = 6000, value_parser = vertex_budget)]
         hierarchy_vertices: usize,
         /// Cap every hole (boundary loop) from 0.4 to this many times √area long before
         /// detecting; the rims of open surfaces are longer (a hemisphere's 2.5) and stay open
         /// (0: never cap).
         #[arg(long, default_value_t = intrinsym::mesh::holes::MAX_LOOP, value_parser = non_negative)]
         max_hole: f64,
-        /// Number of symmetry groups (default: automatic).
-        #[arg(long)]
+        /// Number of symmetry groups, 1 to 64 (default, or 0: automatic).
+        #[arg(long, value_parser = group_count)]
         groups: Option<usize>,
         /// Also look for partial symmetries between repeated parts that no global symmetry
         /// carries (a front paw onto a hind paw; experimental, see `intrinsym::parts`).
@@ -213,6 +215,14 @@ fn run(cli: Cli) -> Result<(), intrinsym::Error> {
             reject_disconnected,
             largest_component,
         } => {
+            // An output that cannot be written fails now, not after the detection.
+            for path in [&json, &ply, &report].into_iter().flatten() {
+                let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(std::path::Path::new("."));
+                if !dir.is_dir() {
+                    let source = std::io::Error::new(std::io::ErrorKind::NotFound, format!("its folder {} does not exist (nothing was detected)", dir.display()));
+                    return Err(intrinsym::mesh::IoError::Os { path: path.clone(), source }.into());
+                }
+            }
             let raw = read_mesh(&input)?;
             let mut mp = MeshParams::default();
             mp.allow_non_manifold = !reject_non_manifold;
@@ -240,7 +250,7 @@ fn run(cli: Cli) -> Result<(), intrinsym::Error> {
             params.maps.proxy_vertices = proxy_vertices;
             params.hierarchy_vertices = hierarchy_vertices;
             params.max_hole = max_hole;
-            params.groups = groups;
+            params.groups = groups.filter(|&g| g > 0);
             params.parts.enabled = parts;
             // A progress bar on stderr, hidden when stderr is not a terminal.
             let bar = indicatif::ProgressBar::with_draw_target(Some(1000), indicatif::ProgressDrawTarget::stderr());
@@ -352,7 +362,7 @@ fn run(cli: Cli) -> Result<(), intrinsym::Error> {
             }
             if let Some(path) = report {
                 let title = format!("intrinsym: {}", input.display());
-                let text = if path.extension().is_some_and(|e| e == "html" || e == "htm") {
+                let text = if path.extension().and_then(|e| e.to_str()).is_some_and(|e| e.eq_ignore_ascii_case("html") || e.eq_ignore_ascii_case("htm")) {
                     intrinsym::output::report::html(&det, &title, Some(&raw.vertices))
                 } else {
                     intrinsym::output::report::svg(&det, &title, Some(&raw.vertices))
@@ -479,6 +489,67 @@ fn generated_size(shape: Shape, size: Option<usize>) -> usize {
         Shape::Torus => 34,
         _ => 5,
     })
+}
+
+/// A report file: `.svg`, `.html` or `.htm` (what it holds follows the extension).
+fn report_path(text: &str) -> Result<PathBuf, String> {
+    let path = PathBuf::from(text);
+    match path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase).as_deref() {
+        Some("svg" | "html" | "htm") => Ok(path),
+        _ => Err(format!("{text:?} must end in .svg, .html or .htm")),
+    }
+}
+
+/// An integer from `lo` to `hi` (the C API's range for the same setting).
+fn integer_in(text: &str, lo: usize, hi: usize) -> Result<usize, String> {
+    match text.parse::<usize>() {
+        Ok(x) if (lo..=hi).contains(&x) => Ok(x),
+        Ok(x) => Err(format!("{x} is out of range: an integer from {lo} to {hi}")),
+        Err(e) => Err(format!("{text:?} is not a non-negative integer: {e}")),
+    }
+}
+
+fn eigenpairs(text: &str) -> Result<usize, String> {
+    integer_in(text, 3, 1000)
+}
+
+fn sample_count(text: &str) -> Result<usize, String> {
+    integer_in(text, 8, 1000)
+}
+
+fn restart_count(text: &str) -> Result<usize, String> {
+    integer_in(text, 0, 8)
+}
+
+fn group_count(text: &str) -> Result<usize, String> {
+    integer_in(text, 0, 64)
+}
+
+/// 0 (off) or 1000 to 1000000 vertices.
+fn vertex_budget(text: &str) -> Result<usize, String> {
+    match text.parse::<usize>() {
+        Ok(x) if x == 0 || (1000..=1_000_000).contains(&x) => Ok(x),
+        Ok(x) => Err(format!("{x} is out of range: 0 (off) or an integer from 1000 to 1000000")),
+        Err(e) => Err(format!("{text:?} is not a non-negative integer: {e}")),
+    }
+}
+
+/// A number in (0, 1].
+fn positive_fraction(text: &str) -> Result<f64, String> {
+    match text.parse::<f64>() {
+        Ok(x) if x > 0.0 && x <= 1.0 => Ok(x),
+        Ok(x) => Err(format!("{x} is out of range: a number greater than 0, at most 1")),
+        Err(e) => Err(format!("{text:?} is not a number: {e}")),
+    }
+}
+
+/// A number in (0, 0.5].
+fn tolerance(text: &str) -> Result<f64, String> {
+    match text.parse::<f64>() {
+        Ok(x) if x > 0.0 && x <= 0.5 => Ok(x),
+        Ok(x) => Err(format!("{x} is out of range: a number greater than 0, at most 0.5")),
+        Err(e) => Err(format!("{text:?} is not a number: {e}")),
+    }
 }
 
 fn fraction(text: &str) -> Result<f64, String> {

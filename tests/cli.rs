@@ -32,3 +32,51 @@ fn generate_sizes_have_per_shape_defaults_and_ranges() {
         assert!(!std::path::Path::new(&file).exists());
     }
 }
+
+/// `detect`'s settings take the C API's ranges (`sym_params_set_*`): a value outside is a
+/// usage error naming the option and the range, before the mesh is read. Before, `--samples 0`
+/// and `--hierarchy-vertices 10` ran and reported no symmetry, and `-k 0` was ignored.
+#[test]
+fn detect_settings_out_of_range_are_usage_errors() {
+    let missing = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("cli_detect_never_read.off");
+    let input = missing.to_string_lossy().into_owned();
+    for (flag, value, range) in [
+        ("-k", "0", "from 3 to 1000"),
+        ("--samples", "0", "from 8 to 1000"),
+        ("--samples", "100000", "from 8 to 1000"),
+        ("--restarts", "9", "from 0 to 8"),
+        ("--groups", "65", "from 0 to 64"),
+        ("--proxy-vertices", "10", "0 (off) or an integer from 1000 to 1000000"),
+        ("--hierarchy-vertices", "10", "0 (off) or an integer from 1000 to 1000000"),
+        ("--eps", "0", "greater than 0, at most 0.5"),
+        ("--accept", "0.7", "greater than 0, at most 0.5"),
+        ("--wks-quantile", "0", "greater than 0, at most 1"),
+    ] {
+        let (code, _, stderr) = intrinsym(&["detect", &input, flag, value]);
+        assert_eq!(code, 2, "{flag} {value}: {stderr}");
+        assert!(stderr.contains(flag) && stderr.contains(range) && !stderr.contains("No such file"), "{flag} {value}: {stderr}");
+    }
+    // In range, the same options pass parsing and the missing mesh is what fails.
+    let (code, _, stderr) = intrinsym(&["detect", &input, "-k", "3", "--samples", "8", "--groups", "0", "--proxy-vertices", "0", "--hierarchy-vertices", "1000000"]);
+    assert_eq!(code, 1, "{stderr}");
+    assert!(stderr.contains("cli_detect_never_read.off"), "{stderr}");
+}
+
+/// Outputs are checked before the detection: a report that is neither `.svg` nor `.html` is
+/// a usage error (an SVG was written into `r.pdf` before), and an output whose folder does not
+/// exist fails before the mesh is read (it failed after the whole detection, its result lost).
+#[test]
+fn outputs_are_checked_before_detecting() {
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("cli_outputs");
+    std::fs::create_dir_all(&dir).unwrap();
+    let input = dir.join("never_read.off").to_string_lossy().into_owned();
+    let (code, _, stderr) = intrinsym(&["detect", &input, "--report", &dir.join("r.pdf").to_string_lossy()]);
+    assert_eq!(code, 2, "{stderr}");
+    assert!(stderr.contains("--report") && stderr.contains(".svg, .html or .htm"), "{stderr}");
+    for flag in ["--json", "--ply", "--report"] {
+        let out = dir.join("missing_folder").join("out.html").to_string_lossy().into_owned();
+        let (code, _, stderr) = intrinsym(&["detect", &input, flag, &out]);
+        assert_eq!(code, 1, "{flag}: {stderr}");
+        assert!(stderr.contains("missing_folder") && stderr.contains("does not exist") && !stderr.contains("never_read"), "{flag}: {stderr}");
+    }
+}

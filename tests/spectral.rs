@@ -67,6 +67,25 @@ fn lanczos_is_m_orthonormal_with_small_residuals() {
     }
 }
 
+/// The fewest pairs the solver accepts: k = 1 is the constant mode alone (it panicked on an
+/// index below zero before, `intrinsym spectrum -k 1`), k = 2 adds the Fiedler pair; both on
+/// the Lanczos path agree with the dense solver.
+#[test]
+fn one_or_two_eigenpairs() {
+    let mesh = shapes::icosphere(4);
+    for k in [1, 2] {
+        let basis = Eigenbasis::compute(&mesh, &params(k, Solver::Lanczos)).unwrap();
+        let dense = Eigenbasis::compute(&mesh, &params(k, Solver::Dense)).unwrap();
+        assert_eq!(basis.evals.len(), k);
+        assert_eq!(basis.evals[0], 0.0);
+        let (res, orth) = eigen::check(&basis.laplacian, &basis.mass, &basis.evals, basis.evecs.as_ref());
+        assert!(res < 1e-8 && orth < 1e-10, "k = {k}: residual {res}, orthogonality {orth}");
+        for (a, b) in basis.evals.iter().zip(&dense.evals) {
+            assert!((a - b).abs() <= 1e-8 * b.abs().max(1.0), "k = {k}: {a} against dense {b}");
+        }
+    }
+}
+
 #[test]
 fn lanczos_agrees_with_dense() {
     for mesh in [shapes::bumpy_torus(16), shapes::icosphere(3), shapes::bumpy_torus(21)] {

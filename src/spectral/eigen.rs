@@ -153,6 +153,12 @@ pub fn eigen(
     }
     assert!(lap.rows() == n && lap.cols() == n && lap.is_csc());
     let area: f64 = mass.iter().sum();
+    if k == 1 {
+        // The constant mode alone: nothing to iterate for.
+        let evecs = Mat::<f64>::from_fn(n, 1, |_, _| 1.0 / area.sqrt());
+        let (max_residual, orthogonality) = check(lap, mass, &[0.0], evecs.as_ref());
+        return Ok((vec![0.0], evecs, EigenInfo { max_residual, orthogonality, ..Default::default() }));
+    }
     let sigma = params.shift * 4.0 * std::f64::consts::PI / area;
     let nev = k - 1; // non-constant pairs
     let b = LANES;
