@@ -472,10 +472,9 @@ fn run(cli: Cli) -> Result<(), intrinsym::Error> {
     Ok(())
 }
 
-/// A number in [0, 1] (clap names the option in its error).
 /// The sizes `generate` accepts for a shape, and what the size is: the torus's grid (3·size²
-/// vertices), the others' icosphere level (a level adds a factor of four: 8 gives 655,362
-/// vertices, 9 would need about 2 GiB for the mesh alone).
+/// vertices), the others' icosphere level (each level four times the vertices: 8 gives
+/// 655,362, the largest mesh of the benchmarks).
 fn size_range(shape: Shape) -> (std::ops::RangeInclusive<usize>, &'static str) {
     match shape {
         Shape::Torus => (3..=1000, "a grid size"),
@@ -552,6 +551,7 @@ fn tolerance(text: &str) -> Result<f64, String> {
     }
 }
 
+/// A number in [0, 1] (clap names the option in its error).
 fn fraction(text: &str) -> Result<f64, String> {
     match text.parse::<f64>() {
         Ok(x) if (0.0..=1.0).contains(&x) => Ok(x),

@@ -690,9 +690,9 @@ fn directed_legs_map_onto_each_other_with_the_parts_stage() {
 }
 
 /// Issue 15, step 6 of the parts stage (`PartParams::compose`): at 2.5k vertices the directed
-/// quadruped at rest has 10 of its 12 ordered leg pairs mapped directly (a diagonal pair's tips
-/// disagree in growth profile); the left–right mirror carries a front↔hind map to the diagonal,
-/// and all 12 are found, with no partial symmetry that maps no leg pair right.
+/// quadruped at rest has 10 of its 12 ordered leg pairs mapped directly; the left–right
+/// mirror carries the found maps to the missing pairs, and all 12 are found, with no partial
+/// symmetry that maps no leg pair right.
 #[test]
 fn the_mirror_carries_leg_maps_to_the_diagonal_pairs() {
     let c = shapes::directed_quadruped(4, Pose::Rest, 0.0, 0);

@@ -401,8 +401,8 @@ pub struct PartParams {
     /// A pair is dropped when its chosen map's extrinsic fit near the tips (the residual after
     /// iterative closest points, step 3) exceeds this many mean edge lengths (default 0.9).
     pub max_rigid_residual: f64,
-    /// Whether part pairs are also carried from the direct ones by the global involutions
-    /// (step 6).
+    /// Whether part pairs are also carried from the direct ones by the strongest global
+    /// symmetry, when it is an involution (step 6; default true).
     pub compose: bool,
 }
 
@@ -501,8 +501,8 @@ enum Side {
 /// map `m: A → B` and a global involution `g` give `m ∘ g: g(A) → B` and `g ∘ m: A → g(B)`,
 /// partial symmetries between the parts `g(A)`, `B` and `A`, `g(B)` (a front paw onto a hind
 /// paw and the left–right mirror give a diagonal pair). Each is kept when its parts are
-/// distinct, no map found so far relates them, and it passes step 3's rigid-fit gate near its
-/// tips. Unlike a direct map, a composed one is not tested against the other global maps
+/// distinct, no map found so far relates them, both of `m`'s parts lie off `g`'s fixed set,
+/// and it passes step 3's rigid-fit gate near its tips. Unlike a direct map, a composed one is not tested against the other global maps
 /// (step 5): the body's front↔back maps, wrong on directed legs, land near the right paw and
 /// would claim the diagonal pairs.
 fn compositions(graph: &EdgeGraph, positions: &[[f64; 3]], direct: &[PartMap], strongest: Option<&[i64]>, rho: f64, params: &PartParams) -> Vec<PartMap> {
