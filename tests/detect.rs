@@ -661,17 +661,18 @@ fn directed_legs_map_onto_each_other_with_the_parts_stage() {
     let d = detect(&c.mesh, &params, &mut |_| true).unwrap();
     let (found, cross) = legs(&c, &d);
     assert!(found >= 10 && cross >= 6, "walking: {found} ordered leg pairs found, {cross} of them front ↔ hind");
-    // With 0.5% noise (seed 1: 10 of 12, 8 before session 35's protrusion test let the
-    // walking paws of one side, 0.3·√area apart, pair), and few partial symmetries that map
-    // no leg pair right (3: 5 before pairs whose map fits no rigid motion near the tips were
-    // dropped, a leg onto the head or the tail).
+    // With 0.5% noise, seed 1: all 12 (10 in session 35, 8 before its protrusion test let the
+    // walking paws of one side, 0.3·√area apart, pair; session 36's compositions with the
+    // mirror replaced a wrong map of a diagonal pair), and few partial symmetries that map no
+    // leg pair right (2: 3 in session 35, 5 before pairs whose map fits no rigid motion near
+    // the tips were dropped, a leg onto the head or the tail).
     let noisy = shapes::directed_quadruped(5, Pose::Walking, 0.005, 1);
     let dn = detect(&noisy.mesh, &params, &mut |_| true).unwrap();
     let (found_noisy, cross_noisy) = legs(&noisy, &dn);
-    assert!(found_noisy >= 10 && cross_noisy >= 6, "noisy: {found_noisy} ordered leg pairs found, {cross_noisy} of them front ↔ hind");
+    assert!(found_noisy == 12 && cross_noisy == 8, "noisy: {found_noisy} ordered leg pairs found, {cross_noisy} of them front ↔ hind");
     let maps_a_leg_pair = |s: &intrinsym::Symmetry| (0..4).any(|i| (0..4).filter(|&j| j != i).any(|j| eval::accuracy(&noisy.mesh, &s.map, &noisy.translation_truth(i, j), &[0.1])[0] >= 0.8));
     let wrong = dn.symmetries.iter().filter(|s| s.kind == Kind::Partial && !maps_a_leg_pair(s)).count();
-    assert!(wrong <= 3, "noisy: {wrong} partial symmetries map no leg pair right");
+    assert!(wrong <= 2, "noisy: {wrong} partial symmetries map no leg pair right");
     let mirror = eval::accuracy(&c.mesh, &d.symmetries[0].map, &mirror_truth(&c), &[0.05])[0];
     assert!(mirror > 0.9 && d.symmetries[0].kind == Kind::Global, "first symmetry: mirror acc {mirror}");
     let first_partial = d.symmetries.iter().position(|s| s.kind == Kind::Partial).expect("partial symmetries");
