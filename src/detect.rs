@@ -1499,12 +1499,15 @@ fn search(shared: &Shared<'_>, params: &Params, seed: u64, timings: &mut Timings
         // The strongest global symmetry the report would keep carries part pairs to others.
         // The maps stage's judge has no curvature term: the report's limit on it
         // (`max_curvature_change`) is applied here with the domain's curvature.
-        let curvature_judge = match (&ctx.judge, &ctx.curvature) {
-            (Some((j, _, _)), Some(h)) => Some(j.clone().with_curvature(Some(h.clone()))),
-            _ => None,
-        };
-        let keeps_curvature = |f: &Found| curvature_judge.as_ref().is_none_or(|j| j.judge(&f.dense.map, f.distortion, params.max_distortion).curvature <= params.max_curvature_change);
-        let strongest = if params.parts.compose { strongest_indices(&found, params, usize::MAX).into_iter().find(|&i| keeps_curvature(&found[i])).map(|i| &found[i].dense.map[..]) } else { None };
+        let strongest = params.parts.compose.then(|| {
+            let curvature_judge = match (&ctx.judge, &ctx.curvature) {
+                (Some((j, _, _)), Some(h)) => Some(j.clone().with_curvature(Some(h.clone()))),
+                _ => None,
+            };
+            let keeps_curvature = |f: &Found| curvature_judge.as_ref().is_none_or(|j| j.judge(&f.dense.map, f.distortion, params.max_distortion).curvature <= params.max_curvature_change);
+            strongest_indices(&found, params, usize::MAX).into_iter().find(|&i| keeps_curvature(&found[i]))
+        });
+        let strongest = strongest.flatten().map(|i| &found[i].dense.map[..]);
         let parts = crate::parts::find(g.graph(), ctx.positions, &agd, &globals, strongest, scale, &params.parts);
         let room = params.max_symmetries.saturating_sub(found.len());
         for m in parts.into_iter().take(room) {

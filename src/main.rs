@@ -170,7 +170,7 @@ fn main() -> ExitCode {
     intrinsym::ffi::process::default_sigpipe();
     let cli = Cli::parse();
     if let Command::Generate { shape, size: Some(size), .. } = &cli.command {
-        let (range, what) = size_range(*shape);
+        let (range, what, _) = size_spec(*shape);
         if !range.contains(size) {
             let message = format!("--size {size} is out of range for this shape: {what} from {} to {}", range.start(), range.end());
             Cli::command().error(clap::error::ErrorKind::ValueValidation, message).exit();
@@ -437,7 +437,8 @@ fn run(cli: Cli) -> Result<(), intrinsym::Error> {
             }
         }
         Command::Generate { shape, output, size, truth } => {
-            let size = generated_size(shape, size);
+            // (A size given was checked in `main`.)
+            let size = size.unwrap_or(size_spec(shape).2);
             let creature = |pose| shapes::quadruped(size as u32, pose, 0.0, 0);
             let (mesh, mirror) = match shape {
                 Shape::Icosphere => (shapes::icosphere(size as u32), None),
@@ -472,22 +473,14 @@ fn run(cli: Cli) -> Result<(), intrinsym::Error> {
     Ok(())
 }
 
-/// The sizes `generate` accepts for a shape, and what the size is: the torus's grid (3·size²
-/// vertices), the others' icosphere level (each level four times the vertices: 8 gives
-/// 655,362, the largest mesh of the benchmarks).
-fn size_range(shape: Shape) -> (std::ops::RangeInclusive<usize>, &'static str) {
+/// The sizes `generate` accepts for a shape, what the size is, and its default: the torus's
+/// grid (3·size² vertices), the others' icosphere level (each level four times the vertices:
+/// 8 gives 655,362, the largest mesh of the benchmarks).
+fn size_spec(shape: Shape) -> (std::ops::RangeInclusive<usize>, &'static str, usize) {
     match shape {
-        Shape::Torus => (3..=1000, "a grid size"),
-        _ => (0..=8, "an icosphere level"),
+        Shape::Torus => (3..=1000, "a grid size", 34),
+        _ => (0..=8, "an icosphere level", 5),
     }
-}
-
-/// `generate`'s size: the one given (checked in `main`) or the shape's default.
-fn generated_size(shape: Shape, size: Option<usize>) -> usize {
-    size.unwrap_or(match shape {
-        Shape::Torus => 34,
-        _ => 5,
-    })
 }
 
 /// A report file: `.svg`, `.html` or `.htm` (what it holds follows the extension).
@@ -499,81 +492,63 @@ fn report_path(text: &str) -> Result<PathBuf, String> {
     }
 }
 
-/// An integer from `lo` to `hi` (the C API's range for the same setting).
-fn integer_in(text: &str, lo: usize, hi: usize) -> Result<usize, String> {
+/// `text` as a number `ok` accepts; out of range, the error names `range` (clap adds the
+/// option).
+fn number(text: &str, ok: impl Fn(f64) -> bool, range: &str) -> Result<f64, String> {
+    match text.parse::<f64>() {
+        Ok(x) if ok(x) => Ok(x),
+        Ok(x) => Err(format!("{x} is out of range: {range}")),
+        Err(e) => Err(format!("{text:?} is not a number: {e}")),
+    }
+}
+
+/// `text` as a non-negative integer `ok` accepts ([`number`]'s twin for counts).
+fn integer(text: &str, ok: impl Fn(usize) -> bool, range: &str) -> Result<usize, String> {
     match text.parse::<usize>() {
-        Ok(x) if (lo..=hi).contains(&x) => Ok(x),
-        Ok(x) => Err(format!("{x} is out of range: an integer from {lo} to {hi}")),
+        Ok(x) if ok(x) => Ok(x),
+        Ok(x) => Err(format!("{x} is out of range: {range}")),
         Err(e) => Err(format!("{text:?} is not a non-negative integer: {e}")),
     }
 }
 
+// The settings' ranges, those of the C API's setters (`sym_params_set_*`).
+
 fn eigenpairs(text: &str) -> Result<usize, String> {
-    integer_in(text, 3, 1000)
+    integer(text, |x| (3..=1000).contains(&x), "an integer from 3 to 1000")
 }
 
 fn sample_count(text: &str) -> Result<usize, String> {
-    integer_in(text, 8, 1000)
+    integer(text, |x| (8..=1000).contains(&x), "an integer from 8 to 1000")
 }
 
 fn restart_count(text: &str) -> Result<usize, String> {
-    integer_in(text, 0, 8)
+    integer(text, |x| x <= 8, "an integer from 0 to 8")
 }
 
 fn group_count(text: &str) -> Result<usize, String> {
-    integer_in(text, 0, 64)
+    integer(text, |x| x <= 64, "an integer from 0 to 64")
 }
 
-/// 0 (off) or 1000 to 1000000 vertices.
 fn vertex_budget(text: &str) -> Result<usize, String> {
-    match text.parse::<usize>() {
-        Ok(x) if x == 0 || (1000..=1_000_000).contains(&x) => Ok(x),
-        Ok(x) => Err(format!("{x} is out of range: 0 (off) or an integer from 1000 to 1000000")),
-        Err(e) => Err(format!("{text:?} is not a non-negative integer: {e}")),
-    }
+    integer(text, |x| x == 0 || (1000..=1_000_000).contains(&x), "0 (off) or an integer from 1000 to 1000000")
 }
 
-/// A number in (0, 1].
 fn positive_fraction(text: &str) -> Result<f64, String> {
-    match text.parse::<f64>() {
-        Ok(x) if x > 0.0 && x <= 1.0 => Ok(x),
-        Ok(x) => Err(format!("{x} is out of range: a number greater than 0, at most 1")),
-        Err(e) => Err(format!("{text:?} is not a number: {e}")),
-    }
+    number(text, |x| x > 0.0 && x <= 1.0, "a number greater than 0, at most 1")
 }
 
-/// A number in (0, 0.5].
 fn tolerance(text: &str) -> Result<f64, String> {
-    match text.parse::<f64>() {
-        Ok(x) if x > 0.0 && x <= 0.5 => Ok(x),
-        Ok(x) => Err(format!("{x} is out of range: a number greater than 0, at most 0.5")),
-        Err(e) => Err(format!("{text:?} is not a number: {e}")),
-    }
+    number(text, |x| x > 0.0 && x <= 0.5, "a number greater than 0, at most 0.5")
 }
 
-/// A number in [0, 1] (clap names the option in its error).
 fn fraction(text: &str) -> Result<f64, String> {
-    match text.parse::<f64>() {
-        Ok(x) if (0.0..=1.0).contains(&x) => Ok(x),
-        Ok(x) => Err(format!("{x} is out of range: a number from 0 to 1")),
-        Err(e) => Err(format!("{text:?} is not a number: {e}")),
-    }
+    number(text, |x| (0.0..=1.0).contains(&x), "a number from 0 to 1")
 }
 
-/// A finite number ≥ 1 (clap names the option in its error).
 fn at_least_one(text: &str) -> Result<f64, String> {
-    match text.parse::<f64>() {
-        Ok(x) if x.is_finite() && x >= 1.0 => Ok(x),
-        Ok(x) => Err(format!("{x} is out of range: a finite number ≥ 1")),
-        Err(e) => Err(format!("{text:?} is not a number: {e}")),
-    }
+    number(text, |x| x.is_finite() && x >= 1.0, "a finite number ≥ 1")
 }
 
-/// A finite number ≥ 0 (clap names the option in its error).
 fn non_negative(text: &str) -> Result<f64, String> {
-    match text.parse::<f64>() {
-        Ok(x) if x.is_finite() && x >= 0.0 => Ok(x),
-        Ok(x) => Err(format!("{x} is out of range: a finite number ≥ 0")),
-        Err(e) => Err(format!("{text:?} is not a number: {e}")),
-    }
+    number(text, |x| x.is_finite() && x >= 0.0, "a finite number ≥ 0")
 }

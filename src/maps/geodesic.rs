@@ -753,8 +753,9 @@ mod tests {
         }
     }
 
-    /// The bucket queue gives the heap's distances to the bit, on a noisy, posed quadruped
-    /// (uneven edges) from several sources; a mesh with a near-zero edge uses the heap.
+    /// The truncated search on the bucket queue settles the heap search's vertices at its
+    /// distances to the bit (radii from a few edges to unbounded), stops when the caller says
+    /// so, and leaves the scratch clean.
     #[test]
     fn unordered_search_is_the_heap_search() {
         let c = shapes::quadruped(4, Pose::Walking, 0.005, 3);
@@ -788,6 +789,8 @@ mod tests {
         assert!(scratch.iter().all(|x| x.is_infinite()));
     }
 
+    /// The bucket queue gives the heap's distances to the bit, on a noisy, posed quadruped
+    /// (uneven edges) from several sources; a mesh with a near-zero edge uses the heap.
     #[test]
     fn bucket_search_is_the_heap_search() {
         let c = shapes::quadruped(4, Pose::Walking, 0.005, 3);

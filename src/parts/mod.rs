@@ -534,9 +534,11 @@ fn compositions(graph: &EdgeGraph, positions: &[[f64; 3]], direct: &mut [PartMap
     let gate = params.max_rigid_residual * graph.mean_length();
     let mut scratch = vec![f64::INFINITY; positions.len()];
     let within = |b: &[(u32, f64)], v: i64| b.iter().any(|&(u, _)| i64::from(u) == v);
+    // Whether map `e` relates the parts at tips `s`, `t` (the vertices within a tip radius of
+    // each: `near_s`, `near_t`): it sends one tip within a tip radius of the other.
+    let relates = |e: &PartMap, (s, t): (usize, usize), near_s: &[(u32, f64)], near_t: &[(u32, f64)]| within(near_t, e.dense.map[s]) || within(near_s, e.dense.map[t]);
     // The compositions of distinct parts off `g`'s fixed set.
     let mut candidates: Vec<Composed> = Vec::new();
-    let mut reaches: Vec<f64> = Vec::new();
     for m in direct.iter() {
         // A part the symmetry maps onto itself (a tail on the mirror plane) pairs alike with a
         // part and with its image, directly on both sides: only pairs of parts off the
@@ -556,8 +558,7 @@ fn compositions(graph: &EdgeGraph, positions: &[[f64; 3]], direct: &mut [PartMap
             }
             let near_s: Vec<(u32, f64)> = near_s.into_iter().filter(|&(_, d)| d <= rho).collect();
             let near_t = ball(graph, t, rho, &mut scratch);
-            // Related: a map sends one tip within a tip radius of the other.
-            let related = direct.iter().position(|e| within(&near_t, e.dense.map[s]) || within(&near_s, e.dense.map[t]));
+            let related = direct.iter().position(|e| relates(e, (s, t), &near_s, &near_t));
             // A direct map that agrees with the composed one on most of its domain is the same
             // map: nothing to compose or replace.
             if let Some(k) = related {
@@ -573,14 +574,14 @@ fn compositions(graph: &EdgeGraph, positions: &[[f64; 3]], direct: &mut [PartMap
                     continue;
                 }
             }
-            reaches.push(params.rigid_reach * m.reach);
             candidates.push((c, near_s, near_t, related));
         }
     }
     // Step 3's rigid-fit residuals near the tips (the stage's costliest test), concurrently:
     // the candidates', and the direct maps' they would replace.
     let n = positions.len();
-    let residuals = crate::parallel::map(&(0..candidates.len()).collect::<Vec<usize>>(), |&i| residual_near_tips(graph, positions, candidates[i].0.tips, &candidates[i].0.dense.map, reaches[i], &mut vec![f64::INFINITY; n]));
+    // (A composed map reaches as far as the map it was composed from.)
+    let residuals = crate::parallel::map(&candidates, |(c, ..)| residual_near_tips(graph, positions, c.tips, &c.dense.map, params.rigid_reach * c.reach, &mut vec![f64::INFINITY; n]));
     let mut rivals: Vec<usize> = candidates.iter().filter_map(|c| c.3).collect();
     rivals.sort_unstable();
     rivals.dedup();
@@ -591,9 +592,8 @@ fn compositions(graph: &EdgeGraph, positions: &[[f64; 3]], direct: &mut [PartMap
     // map's residual, the composed map).
     let mut replace: Vec<(usize, f64, PartMap)> = Vec::new();
     for ((c, near_s, near_t, related), residual) in candidates.into_iter().zip(residuals) {
-        let (s, t) = c.tips;
         // Related by no composed map yet.
-        if residual > gate || out.iter().any(|e| within(&near_t, e.dense.map[s]) || within(&near_s, e.dense.map[t])) {
+        if residual > gate || out.iter().any(|e| relates(e, c.tips, &near_s, &near_t)) {
             continue;
         }
         match related {
