@@ -49,7 +49,7 @@ bool in_range(int value, int lo, int hi, const char *name, QString &message) {
 
 FilterIntrinsymPlugin::FilterIntrinsymPlugin()
 {
-    typeList << FP_INTRINSIC_SYMMETRY;
+    typeList << FP_INTRINSIC_SYMMETRY << FP_INTRINSIC_SYMMETRY_PARTS;
     for (FilterIDType tt : types()) actionList << new QAction(filterName(tt), this);
 }
 
@@ -57,10 +57,20 @@ FilterIntrinsymPlugin::~FilterIntrinsymPlugin() { sym_free(cached); }
 
 QString FilterIntrinsymPlugin::pluginName() const { return "FilterIntrinsym"; }
 
-QString FilterIntrinsymPlugin::filterName(FilterIDType) const { return "Intrinsic Symmetry: Detect"; }
-
-QString FilterIntrinsymPlugin::filterInfo(FilterIDType) const
+QString FilterIntrinsymPlugin::filterName(FilterIDType filter) const
 {
+    return filter == FP_INTRINSIC_SYMMETRY_PARTS ? "Intrinsic Symmetry: Detect with Repeated Parts" : "Intrinsic Symmetry: Detect";
+}
+
+QString FilterIntrinsymPlugin::filterInfo(FilterIDType filter) const
+{
+    const QString parts = filter == FP_INTRINSIC_SYMMETRY_PARTS
+                              ? "<p><b>With repeated parts</b> (experimental): also looks for partial symmetries between "
+                                "repeated parts that no symmetry of the whole shape relates (a front paw and a hind paw, "
+                                "identical fingers or spikes), each in a basis of its own parts; they are logged after the "
+                                "global symmetries as <i>partial</i>, with their region size; show one with Show = Index. "
+                                "Slower (up to about a third more time).</p>"
+                              : "";
     return "Detects the intrinsic symmetries of the mesh (Mukhopadhyay, Bhandarkar & Porikli, "
            "<i>Detection and Characterization of Intrinsic Symmetry</i>): self-maps that preserve "
            "distances on the surface, including ones a pose hides from a mirror plane and partial "
@@ -71,7 +81,7 @@ QString FilterIntrinsymPlugin::filterInfo(FilterIDType) const
            "(kind, orientation, score, group, order, complexity, region size), strongest (highest "
            "score) first, a partial symmetry's score counting a third against global ones. "
            "Library: intrinsym "
-           + QString(sym_version()) + ".";
+           + QString(sym_version()) + "." + parts;
 }
 
 FilterIntrinsymPlugin::FilterClass FilterIntrinsymPlugin::getClass(QAction *)
@@ -99,7 +109,7 @@ void FilterIntrinsymPlugin::initParameterSet(QAction *, MeshModel &, RichParamet
     parlst.addParam(RichEnum("colouring", COLOUR_CORRESPONDENCE, QStringList() << "Correspondence" << "Groups" << "Quality", "Colouring", "Correspondence: a vertex and its image share a colour. Groups: regions painted by symmetry group. Quality: colour ramp of the confidence."));
 }
 
-bool FilterIntrinsymPlugin::applyFilter(QAction *, MeshDocument &md, const RichParameterList &par, vcg::CallBackPos *cb)
+bool FilterIntrinsymPlugin::applyFilter(QAction *action, MeshDocument &md, const RichParameterList &par, vcg::CallBackPos *cb)
 {
     // A failure is reported twice: errorMessage (the GUI's dialog) and the log (meshlabserver
     // prints the log but not errorMessage).
@@ -152,6 +162,8 @@ bool FilterIntrinsymPlugin::applyFilter(QAction *, MeshDocument &md, const RichP
     if (st == SYM_STATUS_OK) st = sym_params_set_accept(params, par.getFloat("accept"));
     if (st == SYM_STATUS_OK) st = sym_params_set_seed(params, uint64_t(seed));
     if (st == SYM_STATUS_OK) st = sym_params_set_proxy_vertices(params, size_t(proxy));
+    const int parts = ID(action) == FP_INTRINSIC_SYMMETRY_PARTS ? 1 : 0;
+    if (st == SYM_STATUS_OK) st = sym_params_set_parts(params, parts);
     // Non-manifold edges are accepted and coincident vertices welded (the library's defaults).
     // There is deliberately no parameter for either: MeshLab 2020.09's meshlabserver aborts
     // (an assertion) on a script that does not list every parameter of a filter, so a new
@@ -166,7 +178,7 @@ bool FilterIntrinsymPlugin::applyFilter(QAction *, MeshDocument &md, const RichP
     fnv(key, xyz.data(), xyz.size() * sizeof(double));
     fnv(key, tri.data(), tri.size() * sizeof(uint32_t));
     const float floats[3] = {par.getFloat("wksQuantile"), par.getFloat("votingEps"), par.getFloat("accept")};
-    const int ints[4] = {eigenpairs, samples, seed, proxy};
+    const int ints[5] = {eigenpairs, samples, seed, proxy, parts};
     fnv(key, floats, sizeof floats);
     fnv(key, ints, sizeof ints);
     sym_result *result = nullptr;

@@ -1,6 +1,8 @@
-// MeshLab 2020.09 filter plugin: "Intrinsic Symmetry: Detect". A thin layer over the intrinsym
-// C API (include/intrinsym.h): packs the current mesh, calls sym_detect with MeshLab's progress
-// bar as the callback, and writes per-vertex quality and colour.
+// MeshLab 2020.09 filter plugin: "Intrinsic Symmetry: Detect", and "Intrinsic Symmetry: Detect
+// with Repeated Parts" (the same with the library's partial symmetries between repeated parts,
+// sym_params_set_parts). A thin layer over the intrinsym C API (include/intrinsym.h): packs the
+// current mesh, calls sym_detect with MeshLab's progress bar as the callback, and writes
+// per-vertex quality and colour.
 #ifndef FILTER_INTRINSYM_H
 #define FILTER_INTRINSYM_H
 
@@ -15,7 +17,9 @@ class FilterIntrinsymPlugin : public QObject, public MeshFilterInterface
     Q_INTERFACES(MeshFilterInterface)
 
 public:
-    enum { FP_INTRINSIC_SYMMETRY };
+    // The parts variant is a filter of its own, not a parameter: MeshLab 2020.09's meshlabserver
+    // aborts on a saved script that does not list every parameter of its filter (README).
+    enum { FP_INTRINSIC_SYMMETRY, FP_INTRINSIC_SYMMETRY_PARTS };
 
     FilterIntrinsymPlugin();
     ~FilterIntrinsymPlugin();

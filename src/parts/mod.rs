@@ -85,6 +85,10 @@
 //!
 //! # State (session 36): experimental, off by default (`PartParams::enabled`, CLI `--parts`)
 //!
+//! Also C `sym_params_set_parts` and, from session 37, the MeshLab filter *Intrinsic Symmetry:
+//! Detect with Repeated Parts* (a filter of its own: a new parameter of the plain filter would
+//! break saved `.mlx` scripts; `meshlab-filter-repeated-parts` in CMakeLists.txt).
+//!
 //! Measured with `examples/quadruped_report.rs` (`SHAPE=directed|spiked|splayed|lopsided|
 //! ellipsoid`; `bench/parts.sh` runs every row): ordered part pairs whose best reported map has
 //! acc@0.1 ≥ 0.8; 2.5k and 10k vertices (icosphere levels 4 and 5), six noise seeds where

@@ -7,8 +7,10 @@
 # varied: the filter succeeds and the Correspondence colours vary over the surface (a sphere).
 # bad:    the filter fails cleanly: a non-zero exit without a crash signal, the message logged.
 # Environment: INTRINSYM_SET="name=value ..." overrides parameters of the script;
+# INTRINSYM_FILTER="name" runs that filter of the plugin instead (same parameters);
 # INTRINSYM_TWICE=1 applies the filter twice (the second time with Colouring = Groups);
-# INTRINSYM_EXPECT=REGEX must match a line of meshlabserver's log.
+# INTRINSYM_EXPECT=REGEX must match a line of meshlabserver's log; INTRINSYM_ABSENT=REGEX must
+# match none.
 set -euo pipefail
 plugin=$1 work=$2 input=$3 mode=$4 truth=${5:-}
 here=$(cd "$(dirname "$0")" && pwd)
@@ -17,6 +19,9 @@ rm -rf "$work"
 export LD_LIBRARY_PATH=/usr/lib/x86_64-linux-gnu/meshlab
 script="$work/script.mlx"
 cp "$here/intrinsym.mlx" "$script"
+if [ -n "${INTRINSYM_FILTER:-}" ]; then
+  sed -i "s/<filter name=\"[^\"]*\">/<filter name=\"${INTRINSYM_FILTER}\">/" "$script"
+fi
 for setting in ${INTRINSYM_SET:-}; do
   sed -i "s/name=\"${setting%%=*}\" value=\"[^\"]*\"/name=\"${setting%%=*}\" value=\"${setting#*=}\"/" "$script"
 done
@@ -36,6 +41,9 @@ set -e
 echo "meshlabserver exit status: $status"
 if [ -n "${INTRINSYM_EXPECT:-}" ]; then
   grep -E "$INTRINSYM_EXPECT" "$work/log.txt" || { echo "the log lacks /$INTRINSYM_EXPECT/"; cat "$work/log.txt"; exit 1; }
+fi
+if [ -n "${INTRINSYM_ABSENT:-}" ] && grep -E "$INTRINSYM_ABSENT" "$work/log.txt"; then
+  echo "the log has /$INTRINSYM_ABSENT/"; exit 1
 fi
 if [ "$mode" = varied ]; then
   [ "$status" -eq 0 ] || { cat "$work/log.txt"; exit 1; }
