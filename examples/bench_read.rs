@@ -1,5 +1,6 @@
-//! Time of reading mesh files, and a hash of what was read (to check that a faster reader reads
-//! the same): `cargo run --release --example bench_read -- FILE...`.
+//! Time of reading mesh files and of validating them ([`intrinsym::Mesh::new`], default
+//! parameters), and a hash of what was read (to check that a faster reader reads the same):
+//! `cargo run --release --example bench_read -- FILE...`.
 //!
 //! Session 37 (docs/hierarchy-benchmark.md): the text readers lend each line from one buffer
 //! instead of copying every line and token; the 955k-vertex scan-like KIDS mesh as OFF 0.65 →
@@ -16,7 +17,10 @@ fn main() {
                 let mut h = std::collections::hash_map::DefaultHasher::new();
                 for p in &raw.vertices { for x in p { x.to_bits().hash(&mut h); } }
                 raw.triangles.hash(&mut h);
-                println!("{path}: {} vertices {} triangles hash {:x}, read {:.3} s", raw.vertices.len(), raw.triangles.len(), h.finish(), dt);
+                let t = std::time::Instant::now();
+                let checked = intrinsym::Mesh::new(raw.vertices.clone(), raw.triangles.clone(), &intrinsym::MeshParams::default()).map(|_| ());
+                let dv = t.elapsed().as_secs_f64();
+                println!("{path}: {} vertices {} triangles hash {:x}, read {dt:.3} s, validated {dv:.3} s ({})", raw.vertices.len(), raw.triangles.len(), h.finish(), if checked.is_ok() { "valid" } else { "invalid" });
             }
             Err(e) => println!("{path}: error {e}"),
         }
