@@ -89,6 +89,13 @@
 //! Detect with Repeated Parts* (a filter of its own: a new parameter of the plain filter would
 //! break saved `.mlx` scripts; `meshlab-filter-repeated-parts` in CMakeLists.txt).
 //!
+//! Session 37, measured and dropped: `rigid_reach` (the share of a region's reach on which
+//! step 3's candidate maps compete by rigid fit) 0.75 instead of 0.5: the 8 directed rows at
+//! 2.5k 78 → 84 of 96 (walking 8 → 12, noisy seed 1 4 → 10) but at 10k 94 → 89, the spikes
+//! 8 → 10 and 11 → 12 of 24; 1.0: 2.5k 78, 10k 81. A head on the spiked body (so that no
+//! global front↔back map relates its outer spikes): 2.5k clean / noisy 0 / 2/1/4, 10k 0 /
+//! 4/4/4 of 6, no better: the stage's own spike maps are flipped, not only the global ones.
+//!
 //! Measured with `examples/quadruped_report.rs` (`SHAPE=directed|spiked|splayed|lopsided|
 //! ellipsoid`; `bench/parts.sh` runs every row): ordered part pairs whose best reported map has
 //! acc@0.1 ≥ 0.8; 2.5k and 10k vertices (icosphere levels 4 and 5), six noise seeds where
