@@ -169,8 +169,8 @@ pub fn read_off(reader: impl BufRead) -> Result<RawMesh, LineError> {
             }
         }
         match part {
-            OffPart::Header => unreachable!("the header is read above"),
-            OffPart::Counts => {
+            // (The header was read above: here `Header` cannot occur.)
+            OffPart::Header | OffPart::Counts => {
                 if rec.len() < 2 {
                     return Err((Some(l), "expected vertex and face counts".into()));
                 }
