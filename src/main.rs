@@ -23,7 +23,7 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Detect the intrinsic symmetries of a mesh (OFF, PLY or OBJ).
+    /// Detect the intrinsic symmetries of a mesh (OFF, PLY, OBJ or STL).
     Detect {
         /// Input mesh.
         input: PathBuf,
@@ -117,7 +117,7 @@ enum Command {
         #[arg(long)]
         largest_component: bool,
     },
-    /// Compute the k lowest Laplace–Beltrami eigenpairs of a mesh (OFF, PLY or OBJ).
+    /// Compute the k lowest Laplace–Beltrami eigenpairs of a mesh (OFF, PLY, OBJ or STL).
     Spectrum {
         /// Input mesh.
         input: PathBuf,

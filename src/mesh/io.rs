@@ -1,6 +1,8 @@
-//! Mesh files: OFF, PLY (ASCII and binary) and OBJ in; the input's vertex order is kept.
+//! Mesh files: OFF, PLY (ASCII and binary), OBJ and STL (ASCII and binary) in; the input's
+//! vertex order is kept (STL has none: its vertices are numbered in order of first use).
 //!
-//! PLY goes through the `ply-rs-bw` crate (the maintained fork of `ply-rs`). OFF and OBJ have
+//! PLY goes through the `ply-rs-bw` crate (the maintained fork of `ply-rs`), STL through
+//! `stl_io` (with the binary/ASCII decision made here, by size). OFF and OBJ have
 //! small readers here: no maintained OFF crate exists, and `tobj` renumbers vertices per object in
 //! order of first use, which would break our promise that result indices are the input file's.
 //! Polygons are fan-triangulated; OBJ texture/normal indices, colours and normals are ignored.
@@ -29,7 +31,7 @@ pub enum IoError {
         /// The cause.
         source: std::io::Error,
     },
-    /// The extension is not one of off, ply, obj.
+    /// The extension is not one of off, ply, obj, stl.
     UnknownFormat {
         /// The file.
         path: PathBuf,
@@ -50,7 +52,7 @@ impl fmt::Display for IoError {
         match self {
             IoError::Os { path, source } => write!(f, "{}: {source}", path.display()),
             IoError::UnknownFormat { path } => {
-                write!(f, "{}: unknown mesh format (expected .off, .ply or .obj)", path.display())
+                write!(f, "{}: unknown mesh format (expected .off, .ply, .obj or .stl)", path.display())
             }
             IoError::Parse { path, line: Some(l), message } => write!(f, "{}:{l}: {message}", path.display()),
             IoError::Parse { path, line: None, message } => write!(f, "{}: {message}", path.display()),
@@ -67,7 +69,7 @@ impl std::error::Error for IoError {
     }
 }
 
-/// Reads an OFF, PLY or OBJ file (chosen by extension, case-insensitive).
+/// Reads an OFF, PLY, OBJ or STL file (chosen by extension, case-insensitive).
 pub fn read_mesh(path: impl AsRef<Path>) -> Result<RawMesh, IoError> {
     let path = path.as_ref();
     let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
@@ -78,6 +80,7 @@ pub fn read_mesh(path: impl AsRef<Path>) -> Result<RawMesh, IoError> {
         Some("off") => read_off(reader).map_err(|(l, m)| parse(l, m)),
         Some("obj") => read_obj(reader).map_err(|(l, m)| parse(l, m)),
         Some("ply") => read_ply(reader).map_err(|m| parse(None, m)),
+        Some("stl") => read_stl(reader).map_err(|m| parse(None, m)),
         _ => Err(IoError::UnknownFormat { path: path.into() }),
     }
 }
@@ -268,6 +271,67 @@ pub fn read_obj(reader: impl BufRead) -> Result<RawMesh, LineError> {
             poly.push((x - 1) as u32);
         }
         push_polygon(&mut mesh.triangles, &poly).map_err(|m| (Some(l), m))?;
+    }
+    Ok(mesh)
+}
+
+/// STL, binary or ASCII (through the `stl_io` crate): three corners per triangle. Corners with
+/// the same coordinates (to the bit) become one vertex, as an indexed format would write them;
+/// a triangle two of whose corners coincide keeps its own copy of the repeated corner, so that
+/// validation welds the copy and drops the collapsed triangle, counted ([`super::Mesh::new`]),
+/// instead of refusing the file for a triangle that names a vertex twice. Binary when the size
+/// is exactly 84 + 50 × the count at byte 80, else ASCII, whose first line must start with
+/// `solid` (a binary file's free header may begin with `solid` too, so the text is not the
+/// test; `stl_io`'s own probe takes such a file for ASCII and fails, and wants a name after
+/// `solid`).
+pub fn read_stl(mut reader: impl Read) -> Result<RawMesh, String> {
+    // The whole file: binary or ASCII is told by its size (one copy; 50 bytes a triangle).
+    let mut bytes = Vec::new();
+    reader.read_to_end(&mut bytes).map_err(|e| e.to_string())?;
+    let binary = bytes.len() >= 84 && {
+        let count = u32::from_le_bytes([bytes[80], bytes[81], bytes[82], bytes[83]]) as u64;
+        bytes.len() as u64 == 84 + 50 * count
+    };
+    let stl_error = |e: std::io::Error| format!("invalid STL: {e}");
+    // What `stl_io` is given: a binary file with its free header blanked (its probe reads a
+    // header that begins with "solid " as ASCII), an ASCII one with a named first line.
+    let source = if binary {
+        bytes[..80].fill(0);
+        bytes
+    } else {
+        let text = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(&bytes);
+        let first_end = text.iter().position(|&b| b == b'\n').map_or(text.len(), |i| i + 1);
+        if !text[..first_end].starts_with(b"solid") {
+            return Err(format!(
+                "neither binary STL ({} bytes, where 84 + 50 per triangle were expected) nor ASCII STL (the first line does not start with \"solid\")",
+                bytes.len()
+            ));
+        }
+        let mut named = b"solid intrinsym\n".to_vec();
+        named.extend_from_slice(&text[first_end..]);
+        named
+    };
+    let mut cursor = std::io::Cursor::new(source);
+    let triangles: Vec<stl_io::Triangle> = stl_io::create_stl_reader(&mut cursor).map_err(stl_error)?.collect::<Result<_, _>>().map_err(stl_error)?;
+    let mut mesh = RawMesh::default();
+    let mut index: std::collections::HashMap<[u32; 3], u32> = std::collections::HashMap::new();
+    for t in &triangles {
+        let mut corners = [0u32; 3];
+        for (c, v) in corners.iter_mut().zip(&t.vertices) {
+            let p = [v[0] as f64, v[1] as f64, v[2] as f64];
+            *c = *index.entry(v.0.map(f32::to_bits)).or_insert_with(|| {
+                mesh.vertices.push(p);
+                (mesh.vertices.len() - 1) as u32
+            });
+        }
+        // A repeated corner gets a copy of its own (welded and dropped by validation).
+        for k in 1..3 {
+            if corners[..k].contains(&corners[k]) {
+                mesh.vertices.push(mesh.vertices[corners[k] as usize]);
+                corners[k] = (mesh.vertices.len() - 1) as u32;
+            }
+        }
+        mesh.triangles.push(corners);
     }
     Ok(mesh)
 }
@@ -538,6 +602,64 @@ mod tests {
         assert!(e.1.contains("vertex index -4"), "{}", e.1);
     }
 
+    /// STL, binary and ASCII: a tetrahedron as a triangle soup becomes 4 shared vertices; a
+    /// binary header that begins with "solid" is still binary; an ASCII file whose first line
+    /// names nothing is read; a triangle with two equal corners is welded away and counted by
+    /// validation, not refused; neither format (or a binary whose size disagrees with its
+    /// count) is an error that says so, without allocating what the count claims.
+    #[test]
+    fn stl_binary_and_ascii() {
+        let p = [[0.0f32, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+        let tets = [[0usize, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]];
+        let binary = |header: &[u8], tris: &[[[f32; 3]; 3]]| {
+            let mut b = vec![0u8; 80];
+            b[..header.len()].copy_from_slice(header);
+            b.extend_from_slice(&(tris.len() as u32).to_le_bytes());
+            for t in tris {
+                b.extend_from_slice(&[0u8; 12]);
+                for c in t {
+                    for x in c {
+                        b.extend_from_slice(&x.to_le_bytes());
+                    }
+                }
+                b.extend_from_slice(&[0u8; 2]);
+            }
+            b
+        };
+        let soup: Vec<[[f32; 3]; 3]> = tets.iter().map(|t| t.map(|i| p[i])).collect();
+        let check = |m: &RawMesh| {
+            assert_eq!(m.vertices.len(), 4);
+            assert_eq!(m.triangles.len(), 4);
+            let mesh = crate::Mesh::new(m.vertices.clone(), m.triangles.clone(), &crate::MeshParams::default()).unwrap();
+            assert_eq!(mesh.num_vertices(), 4);
+        };
+        check(&read_stl(&binary(b"solid but binary", &soup)[..]).unwrap());
+        let mut ascii = String::from("solid\r\n");
+        for t in &soup {
+            ascii += "facet normal 0 0 0\n outer loop\n";
+            for c in t {
+                ascii += &format!("  vertex {} {} {}\n", c[0], c[1], c[2]);
+            }
+            ascii += " endloop\nendfacet\n";
+        }
+        ascii += "endsolid\n";
+        check(&read_stl(ascii.as_bytes()).unwrap());
+        // A degenerate fifth triangle (two corners equal): read, then welded away and counted.
+        let mut five = soup.clone();
+        five.push([p[0], p[1], p[1]]);
+        let m = read_stl(&binary(b"", &five)[..]).unwrap();
+        assert_eq!((m.vertices.len(), m.triangles.len()), (5, 5));
+        let mesh = crate::Mesh::new(m.vertices, m.triangles, &crate::MeshParams::default()).unwrap();
+        assert_eq!((mesh.num_vertices(), mesh.triangles.len(), mesh.info.collapsed_triangles), (4, 4, 1));
+        // Neither format; a binary whose count claims 4·10⁹ triangles in 84 bytes.
+        assert!(read_stl(&b"OFF\n3 1 0\n"[..]).unwrap_err().contains("neither binary STL"));
+        let mut bomb = binary(b"", &[]);
+        bomb[80..84].copy_from_slice(&4_000_000_000u32.to_le_bytes());
+        assert!(read_stl(&bomb[..]).unwrap_err().contains("84 + 50 per triangle"));
+        // A truncated ASCII file is an error of the STL reader.
+        assert!(read_stl(&ascii.as_bytes()[..ascii.len() / 2]).unwrap_err().starts_with("invalid STL"));
+    }
+
     /// Issue 16, item 5: a 71-byte binary PLY whose header declares 4·10⁹ property-less
     /// records aborted the process (the parser reserved 4.5 GB); it is refused.
     #[test]
@@ -564,7 +686,7 @@ mod tests {
         let back = read_mesh(&copy).unwrap();
         assert_eq!(back.vertices, quad().vertices);
         assert_eq!(back.triangles, quad().triangles);
-        let bad = dir.join("q.stl");
+        let bad = dir.join("q.3ds");
         std::fs::write(&bad, "").unwrap();
         assert!(matches!(read_mesh(&bad), Err(IoError::UnknownFormat { .. })));
         let missing = dir.join("missing.off");
