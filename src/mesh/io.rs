@@ -312,10 +312,10 @@ pub fn read_stl(mut reader: impl Read) -> Result<RawMesh, String> {
         named
     };
     let mut cursor = std::io::Cursor::new(source);
-    let triangles: Vec<stl_io::Triangle> = stl_io::create_stl_reader(&mut cursor).map_err(stl_error)?.collect::<Result<_, _>>().map_err(stl_error)?;
     let mut mesh = RawMesh::default();
     let mut index: std::collections::HashMap<[u32; 3], u32> = std::collections::HashMap::new();
-    for t in &triangles {
+    for t in stl_io::create_stl_reader(&mut cursor).map_err(stl_error)? {
+        let t = t.map_err(stl_error)?;
         let mut corners = [0u32; 3];
         for (c, v) in corners.iter_mut().zip(&t.vertices) {
             let p = [v[0] as f64, v[1] as f64, v[2] as f64];
