@@ -82,6 +82,10 @@ enum Command {
         /// to 1000000.
         #[arg(long, default_value_t = 6000, value_parser = vertex_budget)]
         proxy_vertices: usize,
+        /// Passes of the polish on the mesh itself for each search's strongest map lifted
+        /// from the proxy (0: none; none either with --polish 0 or without a proxy).
+        #[arg(long, default_value_t = intrinsym::maps::MapParams::default().lift_polish)]
+        lift_polish: usize,
         /// On a component of more than 4 times this many vertices, detect on a coarse mesh of
         /// this many vertices and lift the maps to every vertex; 0 (always at full resolution)
         /// or 1000 to 1000000.
@@ -205,6 +209,7 @@ fn run(cli: Cli) -> Result<(), intrinsym::Error> {
             final_polish,
             curvature_weight,
             proxy_vertices,
+            lift_polish,
             hierarchy_vertices,
             max_hole,
             groups,
@@ -248,6 +253,7 @@ fn run(cli: Cli) -> Result<(), intrinsym::Error> {
             params.maps.final_polish = final_polish;
             params.maps.curvature_weight = curvature_weight;
             params.maps.proxy_vertices = proxy_vertices;
+            params.maps.lift_polish = lift_polish;
             params.hierarchy_vertices = hierarchy_vertices;
             params.max_hole = max_hole;
             params.groups = groups.filter(|&g| g > 0);

@@ -121,6 +121,31 @@ fn maps_on_a_proxy_are_lifted_to_every_vertex() {
     }
 }
 
+/// The polish of the lifted maps on the mesh itself (`MapParams::lift_polish`): on a
+/// 1,000-vertex proxy of the 2.5k walking quadruped (0.2% noise) the lifted mirror is only as
+/// precise as the proxy's coarse graph measures geodesics; polished on the mesh it is more
+/// precise. Measured, seeds 0–3, the best map's mirror acc@0.02 without / with four passes:
+/// 0.895 / 0.952, 0.875 / 0.948, 0.882 / 0.955, 0.901 / 0.951 (acc@0.05 0.97–0.98 → 0.98–0.99).
+/// The test demands a gain of 0.03 at every seed and 0.93.
+#[test]
+fn lifted_maps_polished_on_the_mesh_are_more_precise() {
+    let mut params = Params::default();
+    params.maps.proxy_vertices = 1000;
+    for seed in 0..4 {
+        let c = shapes::quadruped(4, Pose::Walking, 0.002, seed);
+        let truth = mirror_truth(&c);
+        let mirror = |lift_polish: usize| {
+            let mut p = params.clone();
+            p.maps.lift_polish = lift_polish;
+            let d = detect(&c.mesh, &p, &mut |_| true).unwrap();
+            let acc = |s: &intrinsym::Symmetry, r: f64| eval::accuracy(&c.mesh, &s.map, &truth, &[r])[0];
+            d.symmetries.iter().map(|s| acc(s, 0.02)).fold(0.0, f64::max)
+        };
+        let (without, with) = (mirror(0), mirror(4));
+        assert!(with >= 0.93 && with >= without + 0.03, "seed {seed}: mirror acc@0.02 {without} without the polish on the mesh, {with} with it");
+    }
+}
+
 /// The 10k noisy quadrupeds at full resolution (the maps on the 6,000-vertex proxy): the
 /// mirror is the strongest symmetry and all 12 leg maps are found, in every noise case. Before
 /// new symmetries were refined ahead of variants of found ones, the front↔back map (and with

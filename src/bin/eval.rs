@@ -83,6 +83,7 @@ fn set_param(p: &mut Params, kv: &str) -> Result<(), String> {
         "search_vertices" => p.maps.search_vertices = u()?,
         "global_fraction" => p.maps.global_fraction = f()?,
         "proxy_vertices" => p.maps.proxy_vertices = u()?,
+        "lift_polish" => p.maps.lift_polish = u()?,
         "hierarchy_vertices" => p.hierarchy_vertices = u()?,
         "max_hole" => p.max_hole = f()?,
         "min_hole" => p.min_hole = f()?,

@@ -515,7 +515,7 @@ pub fn polish_passes(ctx: &Context<'_>, geodesics: &Geodesics, m: &DenseMap, sam
 /// Whether two maps are the same input to a polish pass (what [`try_polish`] reads: the map,
 /// every vertex's image, the confidences it keeps where its search does not reach, and whether
 /// the map is global and refined).
-fn same_state(a: &DenseMap, b: &DenseMap) -> bool {
+pub(crate) fn same_state(a: &DenseMap, b: &DenseMap) -> bool {
     a.global == b.global && a.refined == b.refined && a.map == b.map && a.image == b.image && a.confidence == b.confidence
 }
 

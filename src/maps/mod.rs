@@ -129,13 +129,17 @@ pub struct MapParams {
     /// on a proxy of this many vertices and lifted to every vertex ([`proxy`]; default 6000,
     /// 0 disables it).
     pub proxy_vertices: usize,
+    /// Passes of the geodesic polish on the mesh itself for each search's strongest map
+    /// lifted from a proxy, before the searches' versions are compared ([`proxy`], step 5;
+    /// default 4, 0: none).
+    pub lift_polish: usize,
     /// The orientation-reversing functional map hypothesis ([`orientation`]).
     pub orientation: orientation::OrientationParams,
 }
 
 impl Default for MapParams {
     fn default() -> Self {
-        MapParams { accept: 0.03, refine: 3, fmap_size: 20, search_vertices: 1000, local_anchors: 16, wks_accept: 0.2, zoomout_fraction: 0.6, zoomout_k: 100, spectral_start: 12, zoomout_step: 5, global_fraction: 0.75, polish: 4, final_polish: 8, final_polish_maps: 2, polish_samples: 192, polish_geodesic: true, curvature_weight: 0.03, curvature_time: 1e-3, proxy_vertices: 6000, orientation: Default::default() }
+        MapParams { accept: 0.03, refine: 3, fmap_size: 20, search_vertices: 1000, local_anchors: 16, wks_accept: 0.2, zoomout_fraction: 0.6, zoomout_k: 100, spectral_start: 12, zoomout_step: 5, global_fraction: 0.75, polish: 4, final_polish: 8, final_polish_maps: 2, polish_samples: 192, polish_geodesic: true, curvature_weight: 0.03, curvature_time: 1e-3, proxy_vertices: 6000, lift_polish: 4, orientation: Default::default() }
     }
 }
 

@@ -2,7 +2,7 @@
 //!
 //! ```text
 //! { "vertices": n, "faces": m,
-//!   "params": { "eigenpairs", "samples", "seed", "restarts", "min_score_ratio", "global_preference", "wks_quantile", "eps", "accept", "polish", "final_polish", "proxy_vertices", "hierarchy_vertices", "min_hole", "max_hole", "groups", "parts" },
+//!   "params": { "eigenpairs", "samples", "seed", "restarts", "min_score_ratio", "global_preference", "wks_quantile", "eps", "accept", "polish", "final_polish", "proxy_vertices", "lift_polish", "hierarchy_vertices", "min_hole", "max_hole", "groups", "parts" },
 //!   "timings": { "spectral", "descriptors", "distance", "sampling", "voting", "maps",
 //!                "maps_proxy", "maps_profile", "maps_fmap", "maps_refine", "maps_polish", "maps_compose", "maps_lift", "parts",
 //!                "congruence", "hierarchy", "lift", "characterize", "cluster", "total" },   // seconds
@@ -94,6 +94,7 @@ pub fn to_json(det: &Detection, params: &Params) -> Value {
             "polish": params.maps.polish,
             "final_polish": params.maps.final_polish,
             "proxy_vertices": params.maps.proxy_vertices,
+            "lift_polish": params.maps.lift_polish,
             "hierarchy_vertices": params.hierarchy_vertices,
             "min_hole": params.min_hole,
             "max_hole": params.max_hole,
