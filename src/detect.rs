@@ -1136,7 +1136,7 @@ struct Search {
 /// the lift of a proxy's maps to the mesh. `progress` gets the fractions 0.6–0.96 of a
 /// single search. Writes its stages' `timings`.
 fn search(shared: &Shared<'_>, params: &Params, seed: u64, timings: &mut Timings, progress: &mut dyn FnMut(f64) -> bool) -> Result<Search, Error> {
-    let Shared { mesh, basis, desc, emb, oriented, normals, curvature: mesh_curvature, scale, adjacency, graph, judge: mesh_judge, reversing } = *shared;
+    let Shared { mesh, basis, desc, emb, oriented, normals, curvature: mesh_curvature, scale, graph, reversing, .. } = *shared;
     let cancelled = |stage: &'static str| Error::Cancelled { stage };
     let n = mesh.num_vertices();
     let t = Instant::now();
@@ -1172,31 +1172,28 @@ fn search(shared: &Shared<'_>, params: &Params, seed: u64, timings: &mut Timings
     let t_stage = Instant::now();
     // The maps stage works in the vertex indices of its domain: the proxy's, whose first
     // vertices are the polish's anchors (voting's samples first), or the mesh's.
-    let mesh_anchors = polish_anchors.clone();
-    let (probes, polish_anchors): (Vec<usize>, Vec<usize>) = match &proxy {
-        Some(_) => ((0..samples.vertices.len()).collect(), (0..polish_anchors.len()).collect()),
-        None => (samples.vertices.clone(), polish_anchors),
+    // (On a proxy, the anchors in the mesh's indices are kept for the polish on the mesh.)
+    let (probes, polish_anchors, mesh_anchors): (Vec<usize>, Vec<usize>, Vec<usize>) = match &proxy {
+        Some(_) => ((0..samples.vertices.len()).collect(), (0..polish_anchors.len()).collect(), polish_anchors),
+        None => (samples.vertices.clone(), polish_anchors, Vec::new()),
     };
     let probes = &probes[..];
     // The mesh's embedding and basis, for judging the lifted maps after the maps stage.
     let (fine_emb, fine_basis) = (emb, basis);
-    let (emb, basis, mut ctx) = match &proxy {
-        Some(p) => (&p.emb, &p.basis, Context::on_graph(&p.positions, p.adjacency.clone(), &p.emb, &p.wks, vinfo.diameter, &params.maps)),
-        None => (emb, basis, Context::on_graph(&mesh.vertices, adjacency.clone(), emb, desc, vinfo.diameter, &params.maps)),
+    let (emb, basis, ctx) = match &proxy {
+        Some(p) => {
+            let mut ctx = Context::on_graph(&p.positions, p.adjacency.clone(), &p.emb, &p.wks, vinfo.diameter, &params.maps);
+            ctx.basis = Some(&p.basis);
+            // The polish's curvature term (`crate::descriptors::curvature`) at the seeds.
+            ctx.curvature = mesh_curvature.as_ref().map(|h| p.seeds.iter().map(|&s| h[s]).collect());
+            // The judge on the proxy graph, with the mesh's normals at its seeds and its own
+            // low band.
+            let judge = Judge::new(&p.positions, p.seeds.iter().map(|&s| normals[s]).collect(), &p.adjacency, scale, &params.judge).with_band(Some(LowBand::from_basis(&p.basis)));
+            ctx.judge = Some((judge, probes.to_vec(), params.max_distortion));
+            (&p.emb, &p.basis, ctx)
+        }
+        None => (emb, basis, mesh_context(shared, probes, vinfo.diameter, params)),
     };
-    ctx.basis = Some(basis);
-    // The judge on the maps' domain: the mesh, or the proxy graph with the mesh's normals at
-    // its seeds and its own low band.
-    // The polish's curvature term (`crate::descriptors::curvature`), on the maps' domain.
-    ctx.curvature = match (&proxy, mesh_curvature) {
-        (Some(p), Some(h)) => Some(p.seeds.iter().map(|&s| h[s]).collect()),
-        (_, h) => h.clone(),
-    };
-    let domain_judge = match &proxy {
-        Some(p) => Judge::new(&p.positions, p.seeds.iter().map(|&s| normals[s]).collect(), &p.adjacency, scale, &params.judge).with_band(Some(LowBand::from_basis(&p.basis))),
-        None => mesh_judge.clone(),
-    };
-    ctx.judge = Some((domain_judge, probes.to_vec(), params.max_distortion));
     let agree_tol = params.maps.accept * 2.0 * vinfo.diameter;
     // Of two versions of one symmetry the `better` one is kept.
     let verdict = |m: &maps::DenseMap| ctx.verdict(&m.map).unwrap_or_default();
@@ -1539,10 +1536,7 @@ fn search(shared: &Shared<'_>, params: &Params, seed: u64, timings: &mut Timings
     // The strongest lifted maps polished on the mesh itself, before the pool compares them
     // with other searches' versions.
     if params.maps.lift_polish > 0 && params.maps.polish > 0 && proxy.is_some() {
-        let mut mesh_ctx = Context::on_graph(&mesh.vertices, adjacency.clone(), emb, desc, vinfo.diameter, &params.maps);
-        mesh_ctx.basis = Some(basis);
-        mesh_ctx.curvature = mesh_curvature.clone();
-        mesh_ctx.judge = Some((mesh_judge.clone(), probes.to_vec(), params.max_distortion));
+        let mesh_ctx = mesh_context(shared, probes, vinfo.diameter, params);
         if !polish_lifted(&mesh_ctx, &mut found, &mesh_anchors, probes, emb, basis, vinfo.diameter, params, progress) {
             return Err(cancelled("polish"));
         }
@@ -1552,8 +1546,18 @@ fn search(shared: &Shared<'_>, params: &Params, seed: u64, timings: &mut Timings
     Ok(Search { found, samples: samples.vertices, diameter: vinfo.diameter, candidates: candidates.len() })
 }
 
+/// The maps stage's context on the mesh itself: its graph, embedding, descriptors, basis,
+/// curvature term and judge (distortion on `probes`).
+fn mesh_context<'a>(shared: &Shared<'a>, probes: &[usize], diameter: f64, params: &Params) -> Context<'a> {
+    let mut ctx = Context::on_graph(&shared.mesh.vertices, shared.adjacency.clone(), shared.emb, shared.desc, diameter, &params.maps);
+    ctx.basis = Some(shared.basis);
+    ctx.curvature = shared.curvature.clone();
+    ctx.judge = Some((shared.judge.clone(), probes.to_vec(), params.max_distortion));
+    ctx
+}
+
 /// The polish on the mesh itself of a proxy's strongest lifted map (`MapParams::lift_polish`
-/// passes, one at a time so that a cancellation takes effect between them): the proxy's graph
+/// passes, with a cancellation check before each): the proxy's graph
 /// measures geodesics more coarsely than the mesh's edges, and the lift only interpolates
 /// within the proxy's precision (`maps::proxy`). `anchors` are the polish's anchors in the
 /// mesh's indices, `probes` voting's samples. `false` when cancelled.
@@ -1564,19 +1568,9 @@ fn polish_lifted(ctx: &Context<'_>, found: &mut [Found], anchors: &[usize], prob
     };
     let mut geodesics = maps::geodesic::Geodesics::new(ctx);
     geodesics.pin(anchors);
-    let mut dense = found[i].dense.clone();
-    for _ in 0..params.maps.lift_polish {
-        if !progress(0.965) {
-            return false;
-        }
-        let (next, _) = maps::geodesic::polish_passes(ctx, &geodesics, &dense, anchors, 1, &params.maps);
-        // A fixed point: every later pass returns it too.
-        let fixed = maps::geodesic::same_state(&next, &dense);
-        dense = next;
-        if fixed {
-            break;
-        }
-    }
+    let Some((dense, _)) = maps::geodesic::polish_passes_while(ctx, &geodesics, &found[i].dense, anchors, params.maps.lift_polish, &params.maps, &mut || progress(0.965)) else {
+        return false;
+    };
     if dense.map != found[i].dense.map {
         let f = &mut found[i];
         f.distortion = characterize::sample_distortion(&dense.map, probes, emb, diameter);

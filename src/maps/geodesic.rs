@@ -491,31 +491,40 @@ pub fn polish(ctx: &Context<'_>, geodesics: &Geodesics, m: &DenseMap, samples: &
 /// gets first, 1 of 231 does. KIDS pose 1's strongest map is a fixed point before its further
 /// passes.
 pub fn polish_passes(ctx: &Context<'_>, geodesics: &Geodesics, m: &DenseMap, samples: &[usize], passes: usize, params: &MapParams) -> (DenseMap, usize) {
+    polish_passes_while(ctx, geodesics, m, samples, passes, params, &mut || true).expect("never cancelled")
+}
+
+/// [`polish_passes`], asking `keep_going` before each pass run: `None` once it says no (a
+/// cancellation between passes).
+pub fn polish_passes_while(ctx: &Context<'_>, geodesics: &Geodesics, m: &DenseMap, samples: &[usize], passes: usize, params: &MapParams, keep_going: &mut dyn FnMut() -> bool) -> Option<(DenseMap, usize)> {
     // The last two results, newest first: `previous[0]` after pass `done`.
     let mut previous: Vec<DenseMap> = vec![m.clone()];
     for done in 1..=passes {
+        if !keep_going() {
+            return None;
+        }
         let Some(polished) = try_polish(ctx, geodesics, &previous[0], samples, params) else {
-            return (previous.swap_remove(0), done);
+            return Some((previous.swap_remove(0), done));
         };
         if same_state(&polished, &previous[0]) {
             // A fixed point: every later pass returns it too.
-            return (polished, done);
+            return Some((polished, done));
         }
         if previous.len() == 2 && same_state(&polished, &previous[1]) {
             // A cycle: pass `done + j` returns `polished` for even `j`, the other map for odd.
             let map = if (passes - done) % 2 == 0 { polished } else { previous.swap_remove(0) };
-            return (map, done);
+            return Some((map, done));
         }
         previous.insert(0, polished);
         previous.truncate(2);
     }
-    (previous.swap_remove(0), passes)
+    Some((previous.swap_remove(0), passes))
 }
 
 /// Whether two maps are the same input to a polish pass (what [`try_polish`] reads: the map,
 /// every vertex's image, the confidences it keeps where its search does not reach, and whether
 /// the map is global and refined).
-pub(crate) fn same_state(a: &DenseMap, b: &DenseMap) -> bool {
+fn same_state(a: &DenseMap, b: &DenseMap) -> bool {
     a.global == b.global && a.refined == b.refined && a.map == b.map && a.image == b.image && a.confidence == b.confidence
 }
 
