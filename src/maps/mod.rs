@@ -334,11 +334,11 @@ fn trimmed_mean(bits: &mut [u64]) -> f64 {
     bits[..keep].iter().map(|&b| f64::from_bits(b)).sum::<f64>() / keep as f64
 }
 
-/// The `k` anchors nearest to a vertex among `candidates`, from its distance to each anchor
-/// (`dist(i)`): `(anchor, distance)` pairs in `out`.
-fn nearest_profile(dist: impl Fn(usize) -> f64, candidates: impl IntoIterator<Item = usize>, k: usize, out: &mut Vec<(usize, f64)>) {
+/// The `k` anchors nearest to a vertex among `candidates`, `(anchor, the vertex's distance to
+/// it)` pairs: those pairs in `out`.
+fn nearest_profile(candidates: impl IntoIterator<Item = (usize, f64)>, k: usize, out: &mut Vec<(usize, f64)>) {
     out.clear();
-    out.extend(candidates.into_iter().map(|i| (i, dist(i))));
+    out.extend(candidates);
     if out.len() > k {
         // Distances are non-negative: their bit patterns order like them (and like
         // `total_cmp`, so the selection is the same), compared as integers.
@@ -783,7 +783,7 @@ fn profile_images(
             // are coarse and partly wrong); later rounds on the nearest anchors.
             let robust = round == 0;
             let k = if robust { src.len() } else { params.local_anchors };
-            nearest_profile(|i| sd[(si, i)], 0..src.len(), k, &mut profile);
+            nearest_profile((0..src.len()).map(|i| (i, sd[(si, i)])), k, &mut profile);
             let mut cost = |w: usize| if robust { robust_mismatch(&profile, &dst, w, &mut scratch) } else { mismatch(&profile, &dst, w) };
             // Start: the previous round's image, else the best strided vertex (coarse search),
             // or the candidate's own target if x is an anchor and that fits better.
@@ -880,7 +880,7 @@ impl Profiles {
             let mut profile = Vec::new();
             let mut out = Vec::with_capacity(range.len() * k);
             for v in range {
-                nearest_profile(|i| dsrc[(v, i)], 0..anchors, local, &mut profile);
+                nearest_profile((0..anchors).map(|i| (i, dsrc[(v, i)])), local, &mut profile);
                 debug_assert_eq!(profile.len(), k);
                 out.extend_from_slice(&profile);
             }
@@ -1008,7 +1008,7 @@ mod tests {
         let rows = search_rows(&ctx, &dst);
         let (mut scratch, mut scratch2, mut profile) = (Vec::new(), Vec::new(), Vec::new());
         for si in 0..samples.len() {
-            nearest_profile(|i| sd[(si, i)], 0..src.len(), src.len(), &mut profile);
+            nearest_profile((0..src.len()).map(|i| (i, sd[(si, i)])), src.len(), &mut profile);
             let exhaustive = multi_start(&ctx, |w| robust_mismatch(&profile, &dst, w, &mut scratch));
             let pruned = robust_multi_start(&ctx, &profile, &rows, &mut scratch2, |w| robust_mismatch(&profile, &dst, w, &mut scratch));
             assert_eq!(pruned, exhaustive, "sample {si}");
