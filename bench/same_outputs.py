@@ -1,10 +1,11 @@
 #!/usr/bin/env python3
-"""Check that two intrinsym builds detect the same symmetries on TOSCA and SHREC'16.
+"""Check that two intrinsym builds detect the same symmetries on shared/data's shapes.
 
-    python3 bench/same_outputs.py OLD_BIN NEW_BIN
+    python3 bench/same_outputs.py OLD_BIN NEW_BIN [DATASET ...]
 
-Runs `intrinsym detect SHAPE --json` with both binaries on every shape of ../shared/data
-(SHREC'16 kids with --allow-non-manifold) and compares the JSON `symmetries` (every map,
+Runs `intrinsym detect SHAPE --json` with both binaries on every shape of the named datasets
+of ../shared/data (folder names: tosca, faust, shrec16_kids, kids_hires; by default tosca
+and shrec16_kids; SHREC'16 kids with --allow-non-manifold) and compares the JSON `symmetries` (every map,
 confidence, functional map, complexity, ...) exactly, on the keys both builds write (a field
 added by the new build is not a difference). Prints one line per shape and exits
 with status 1 when any differs. A speed change that should not change results must pass this
@@ -29,10 +30,11 @@ def symmetries(binary, shape, out):
 
 
 def main():
-    if len(sys.argv) != 3:
+    if len(sys.argv) < 3:
         sys.exit(__doc__)
-    old, new = sys.argv[1:]
-    shapes = sorted(glob.glob(os.path.join(DATA, "tosca", "*.off"))) + sorted(glob.glob(os.path.join(DATA, "shrec16_kids", "*.off")))
+    old, new = sys.argv[1:3]
+    datasets = sys.argv[3:] or ["tosca", "shrec16_kids"]
+    shapes = [s for d in datasets for s in sorted(glob.glob(os.path.join(DATA, d, "*.off")))]
     if not shapes:
         sys.exit(f"no shapes in {DATA}")
     different = 0
