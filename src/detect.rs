@@ -1194,6 +1194,7 @@ fn search(shared: &Shared<'_>, params: &Params, seed: u64, timings: &mut Timings
         }
         None => (emb, basis, mesh_context(shared, probes, vinfo.diameter, params)),
     };
+    let measure = Measure { probes, emb, basis, diameter: vinfo.diameter, params };
     let agree_tol = params.maps.accept * 2.0 * vinfo.diameter;
     // Of two versions of one symmetry the `better` one is kept.
     let verdict = |m: &maps::DenseMap| ctx.verdict(&m.map).unwrap_or_default();
@@ -1213,7 +1214,7 @@ fn search(shared: &Shared<'_>, params: &Params, seed: u64, timings: &mut Timings
         if ctx.verdict(&dense.map).is_some_and(|v| v.fixed > params.max_fixed) {
             return None;
         }
-        let distortion = characterize::sample_distortion(&dense.map, probes, emb, vinfo.diameter);
+        let distortion = measure.distortion(&dense.map);
         Some((dense, anchors[0], distortion))
     };
     // The second hypothesis generator, alongside voting's profile maps (a core that finishes
@@ -1344,11 +1345,11 @@ fn search(shared: &Shared<'_>, params: &Params, seed: u64, timings: &mut Timings
             }
             judged = Some(v);
         }
-        let distortion = characterize::sample_distortion(&dense.map, probes, emb, vinfo.diameter);
+        let distortion = measure.distortion(&dense.map);
         if distortion > params.max_distortion {
             continue;
         }
-        let complexity = characterize::complexity(&maps::functional_map(basis, &dense.map, params.maps.fmap_size), params.complexity_width);
+        let complexity = measure.complexity(&dense.map);
         let verdict = judged.unwrap_or_else(|| verdict(&dense));
         let candidate = Found { dense, part: false, seed, distortion, complexity, verdict };
         let refined = candidate.dense.refined;
@@ -1368,17 +1369,15 @@ fn search(shared: &Shared<'_>, params: &Params, seed: u64, timings: &mut Timings
     }
     let geodesics = (params.maps.polish > 0 || params.parts.enabled).then(|| {
         let mut g = maps::geodesic::Geodesics::new(&ctx);
-        // The samples are the sources of every global map: their table is built once.
+        // The samples are the sources of every global map: searched once, up front.
         g.pin(&polish_anchors);
         g
     });
-    // A polished map replaces a symmetry's map: its distortion (`distortion`, on the samples),
-    // its functional map's complexity and its verdict follow it.
-    let replace_map = |f: &mut Found, dense: maps::DenseMap, distortion: f64| {
-        f.distortion = distortion;
-        f.complexity = characterize::complexity(&maps::functional_map(basis, &dense.map, params.maps.fmap_size), params.complexity_width);
+    // A polished map replaces a symmetry's map: its distortion on the samples, its functional
+    // map's complexity and its verdict follow it.
+    let replace_map = |f: &mut Found, dense: maps::DenseMap| {
         f.verdict = verdict(&dense);
-        f.dense = dense;
+        measure.replace(f, dense);
     };
     if let (true, Some(geodesics)) = (params.maps.polish > 0, &geodesics) {
         let anchors = &polish_anchors;
@@ -1394,7 +1393,7 @@ fn search(shared: &Shared<'_>, params: &Params, seed: u64, timings: &mut Timings
                 maps::geodesic::polish_passes(&ctx, geodesics, &f.dense, anchors, params.maps.polish, &params.maps).0
             });
             for (f, dense) in round.iter_mut().zip(polished) {
-                let distortion = characterize::sample_distortion(&dense.map, probes, emb, vinfo.diameter);
+                let distortion = measure.distortion(&dense.map);
                 // The polish extends a partial map that preserves geodesics over most of the
                 // shape to a global one; one that then distorts the samples' distances more
                 // than `max_distortion` (a limit every map is held to before the polish) is
@@ -1406,7 +1405,7 @@ fn search(shared: &Shared<'_>, params: &Params, seed: u64, timings: &mut Timings
                 if !f.dense.global && dense.global && distortion > params.max_distortion {
                     continue;
                 }
-                replace_map(f, dense, distortion);
+                replace_map(f, dense);
             }
         }
     }
@@ -1444,7 +1443,7 @@ fn search(shared: &Shared<'_>, params: &Params, seed: u64, timings: &mut Timings
                 }
                 // Errors of the two maps add up at most: a composition distorting more than its
                 // factors together is partly wrong (one factor was only partly right).
-                let distortion = characterize::sample_distortion(&dense.map, probes, emb, vinfo.diameter);
+                let distortion = measure.distortion(&dense.map);
                 let bound = (found[first].distortion + found[second].distortion).min(params.max_distortion);
                 if distortion > bound {
                     continue;
@@ -1454,7 +1453,7 @@ fn search(shared: &Shared<'_>, params: &Params, seed: u64, timings: &mut Timings
                 // beats (`better`: a noisy quadruped's diagonal leg map found directly, whose
                 // own compositions were junk), gives way to the composition.
                 let known = same_as(&dense, verdict.reverses(), &found, 0.5);
-                let complexity = characterize::complexity(&maps::functional_map(basis, &dense.map, params.maps.fmap_size), params.complexity_width);
+                let complexity = measure.complexity(&dense.map);
                 let seed = (found[first].seed.0, dense.image[found[first].seed.0]);
                 let composed = Found { dense, part: false, seed, distortion, complexity, verdict };
                 match known {
@@ -1482,8 +1481,7 @@ fn search(shared: &Shared<'_>, params: &Params, seed: u64, timings: &mut Timings
         let polished = crate::parallel::map(&chosen, |&i| maps::geodesic::polish_passes(&ctx, geodesics, &found[i].dense, &polish_anchors, params.maps.final_polish, &params.maps).0);
         for (&i, dense) in chosen.iter().zip(polished) {
             if dense.map != found[i].dense.map {
-                let distortion = characterize::sample_distortion(&dense.map, probes, emb, vinfo.diameter);
-                replace_map(&mut found[i], dense, distortion);
+                replace_map(&mut found[i], dense);
             }
         }
     }
@@ -1512,38 +1510,66 @@ fn search(shared: &Shared<'_>, params: &Params, seed: u64, timings: &mut Timings
         let parts = crate::parts::find(g.graph(), ctx.positions, &agd, &globals, strongest, scale, &params.parts);
         let room = params.max_symmetries.saturating_sub(found.len());
         for m in parts.into_iter().take(room) {
-            let distortion = characterize::sample_distortion(&m.dense.map, probes, emb, vinfo.diameter);
-            let complexity = characterize::complexity(&maps::functional_map(basis, &m.dense.map, params.maps.fmap_size), params.complexity_width);
+            let distortion = measure.distortion(&m.dense.map);
+            let complexity = measure.complexity(&m.dense.map);
             let judged = verdict(&m.dense);
             found.push(Found { dense: m.dense, part: true, seed: m.tips, distortion, complexity, verdict: judged });
         }
     }
     drop(geodesics);
     timings.parts = t_stage.elapsed().as_secs_f64();
-    let (emb, basis, probes) = (fine_emb, fine_basis, &samples.vertices[..]);
+    let measure = Measure { probes: &samples.vertices, emb: fine_emb, basis: fine_basis, ..measure };
     // Proxy maps lifted to every vertex (concurrently; each is independent), then judged
     // again on the mesh: distortion on the samples, complexity of the mesh's functional map.
     let t_stage = Instant::now();
     if let Some(p) = &proxy {
         let lifted = crate::parallel::map(&found, |f| p.lift(&mesh.vertices, &f.dense));
         for (f, dense) in found.iter_mut().zip(lifted) {
-            f.dense = dense;
             f.seed = (p.seeds[f.seed.0], p.seeds[f.seed.1]);
-            f.distortion = characterize::sample_distortion(&f.dense.map, probes, emb, vinfo.diameter);
-            f.complexity = characterize::complexity(&maps::functional_map(basis, &f.dense.map, params.maps.fmap_size), params.complexity_width);
+            measure.replace(f, dense);
         }
     }
     // The strongest lifted maps polished on the mesh itself, before the pool compares them
     // with other searches' versions.
     if params.maps.lift_polish > 0 && params.maps.polish > 0 && proxy.is_some() {
-        let mesh_ctx = mesh_context(shared, probes, vinfo.diameter, params);
-        if !polish_lifted(&mesh_ctx, &mut found, &mesh_anchors, probes, emb, basis, vinfo.diameter, params, progress) {
+        let mesh_ctx = mesh_context(shared, measure.probes, vinfo.diameter, params);
+        if !polish_lifted(&mesh_ctx, &mut found, &mesh_anchors, &measure, progress) {
             return Err(cancelled("polish"));
         }
     }
     timings.maps_lift = t_stage.elapsed().as_secs_f64();
     timings.maps = t.elapsed().as_secs_f64();
     Ok(Search { found, samples: samples.vertices, diameter: vinfo.diameter, candidates: candidates.len() })
+}
+
+/// What the maps stage measures a map by on one domain (the maps' domain, or the mesh once
+/// the maps are lifted): its distortion of the samples' biharmonic distances
+/// ([`characterize::sample_distortion`]) and the complexity of its functional map
+/// ([`characterize::complexity`]).
+#[derive(Clone, Copy)]
+struct Measure<'a> {
+    probes: &'a [usize],
+    emb: &'a crate::distance::BiharmonicEmbedding,
+    basis: &'a Eigenbasis,
+    diameter: f64,
+    params: &'a Params,
+}
+
+impl Measure<'_> {
+    fn distortion(&self, map: &[i64]) -> f64 {
+        characterize::sample_distortion(map, self.probes, self.emb, self.diameter)
+    }
+
+    fn complexity(&self, map: &[i64]) -> f64 {
+        characterize::complexity(&maps::functional_map(self.basis, map, self.params.maps.fmap_size), self.params.complexity_width)
+    }
+
+    /// `dense` becomes `f`'s map, with its distortion and complexity (its verdict is kept).
+    fn replace(&self, f: &mut Found, dense: maps::DenseMap) {
+        f.distortion = self.distortion(&dense.map);
+        f.complexity = self.complexity(&dense.map);
+        f.dense = dense;
+    }
 }
 
 /// The maps stage's context on the mesh itself: its graph, embedding, descriptors, basis,
@@ -1560,9 +1586,9 @@ fn mesh_context<'a>(shared: &Shared<'a>, probes: &[usize], diameter: f64, params
 /// passes, with a cancellation check before each): the proxy's graph
 /// measures geodesics more coarsely than the mesh's edges, and the lift only interpolates
 /// within the proxy's precision (`maps::proxy`). `anchors` are the polish's anchors in the
-/// mesh's indices, `probes` voting's samples. `false` when cancelled.
-#[allow(clippy::too_many_arguments)]
-fn polish_lifted(ctx: &Context<'_>, found: &mut [Found], anchors: &[usize], probes: &[usize], emb: &crate::distance::BiharmonicEmbedding, basis: &Eigenbasis, diameter: f64, params: &Params, progress: &mut dyn FnMut(f64) -> bool) -> bool {
+/// mesh's indices; `measure` measures maps on the mesh. `false` when cancelled.
+fn polish_lifted(ctx: &Context<'_>, found: &mut [Found], anchors: &[usize], measure: &Measure<'_>, progress: &mut dyn FnMut(f64) -> bool) -> bool {
+    let params = measure.params;
     let Some(&i) = strongest_indices(found, params, 1).first() else {
         return true;
     };
@@ -1572,10 +1598,7 @@ fn polish_lifted(ctx: &Context<'_>, found: &mut [Found], anchors: &[usize], prob
         return false;
     };
     if dense.map != found[i].dense.map {
-        let f = &mut found[i];
-        f.distortion = characterize::sample_distortion(&dense.map, probes, emb, diameter);
-        f.complexity = characterize::complexity(&maps::functional_map(basis, &dense.map, params.maps.fmap_size), params.complexity_width);
-        f.dense = dense;
+        measure.replace(&mut found[i], dense);
     }
     true
 }
