@@ -1368,7 +1368,7 @@ fn search(shared: &Shared<'_>, params: &Params, seed: u64, timings: &mut Timings
         return Err(cancelled("polish"));
     }
     let geodesics = (params.maps.polish > 0 || params.parts.enabled).then(|| {
-        let mut g = maps::geodesic::Geodesics::new(&ctx);
+        let g = maps::geodesic::Geodesics::new(&ctx);
         // The samples are the sources of every global map: searched once, up front.
         g.pin(&polish_anchors);
         g
@@ -1592,7 +1592,7 @@ fn polish_lifted(ctx: &Context<'_>, found: &mut [Found], anchors: &[usize], meas
     let Some(&i) = strongest_indices(found, params, 1).first() else {
         return true;
     };
-    let mut geodesics = maps::geodesic::Geodesics::new(ctx);
+    let geodesics = maps::geodesic::Geodesics::new(ctx);
     geodesics.pin(anchors);
     let Some((dense, _)) = maps::geodesic::polish_passes_while(ctx, &geodesics, &found[i].dense, anchors, params.maps.lift_polish, &params.maps, &mut || progress(0.965)) else {
         return false;
