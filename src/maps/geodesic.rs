@@ -443,13 +443,18 @@ impl<'t> Pairs<'t> {
         }
     }
 
+    /// The distances from the source of pair `j`: `g(·, source)`.
+    fn source_column(&self, j: usize) -> &'t [f64] {
+        if j < self.s {
+            self.ga[j]
+        } else {
+            self.gb[j - self.s]
+        }
+    }
+
     /// `g(v, source of pair j)`.
     fn to_source(&self, v: usize, j: usize) -> f64 {
-        if j < self.s {
-            self.ga[j][v]
-        } else {
-            self.gb[j - self.s][v]
-        }
+        self.source_column(j)[v]
     }
 
     /// `g(w, target of pair j)`.
@@ -622,13 +627,7 @@ pub fn try_polish(ctx: &Context<'_>, geodesics: &Geodesics, m: &DenseMap, sample
     // moves with its neighbours' evidence (and the next pass takes the moved image).
     // Each anchor's source vertex and distance column, looked up once per pass (not once per
     // vertex and anchor: this loop reads every anchor's distance from every vertex).
-    let sources: Vec<(usize, usize, &[f64])> = anchors
-        .iter()
-        .map(|&j| {
-            let column = if j < s { pairs.ga[j] } else { pairs.gb[j - s] };
-            (j, pairs.pair(j).0, column)
-        })
-        .collect();
+    let sources: Vec<(usize, usize, &[f64])> = anchors.iter().map(|&j| (j, pairs.pair(j).0, pairs.source_column(j))).collect();
     let profile_of = |v: usize, profile: &mut Vec<(usize, f64)>| {
         super::nearest_profile(sources.iter().filter(|&&(_, a, _)| a != v).map(|&(j, _, column)| (j, column[v])), k, profile);
     };
