@@ -69,6 +69,40 @@ fn proxy_size_is_a_parameter() {
     sym_params_free(p);
 }
 
+/// The curvature weight through the C API reaches the detection: with 0 the scores are those
+/// of the Rust detection without the curvature term (the judge's curvature factor is 1), not
+/// the default's; a negative or NaN weight is refused and changes nothing.
+#[test]
+fn curvature_weight_is_a_parameter() {
+    let (c, v, t) = quadruped_arrays(3);
+    let p = sym_params_new();
+    assert_eq!(sym_params_set_curvature_weight(p, -0.5), sym_status::SYM_STATUS_INVALID_ARGUMENT);
+    assert!(last_error().contains("sym_params_set_curvature_weight"), "{}", last_error());
+    assert_eq!(sym_params_set_curvature_weight(p, f64::NAN), sym_status::SYM_STATUS_INVALID_ARGUMENT);
+    assert_eq!(sym_params_set_curvature_weight(p, 0.0), sym_status::SYM_STATUS_OK);
+    let mut r: *mut sym_result = ptr::null_mut();
+    let st = unsafe { sym_detect(v.as_ptr(), c.mesh.num_vertices(), t.as_ptr(), c.mesh.num_triangles(), p, None, ptr::null_mut(), &mut r) };
+    assert_eq!(st, sym_status::SYM_STATUS_OK, "{}", last_error());
+    let scores: Vec<f64> = (0..sym_count(r))
+        .map(|i| {
+            let mut s: sym_symmetry = unsafe { std::mem::zeroed() };
+            s.struct_size = std::mem::size_of::<sym_symmetry>();
+            assert_eq!(unsafe { sym_get_map(r, i, &mut s) }, sym_status::SYM_STATUS_OK);
+            s.score
+        })
+        .collect();
+    sym_free(r);
+    sym_params_free(p);
+    let rust = |weight: f64| {
+        let mut params = intrinsym::Params::default();
+        params.maps.curvature_weight = weight;
+        let d = intrinsym::detect(&c.mesh, &params, &mut |_| true).unwrap();
+        d.symmetries.iter().map(|s| s.verdict.score).collect::<Vec<f64>>()
+    };
+    assert_eq!(scores, rust(0.0));
+    assert_ne!(scores, rust(0.03), "the default weight gives the same scores: the test cannot tell");
+}
+
 #[test]
 fn failures_leave_out_untouched_and_explain() {
     let v = [0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, f64::NAN, 0.0];

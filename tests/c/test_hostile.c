@@ -222,6 +222,11 @@ int main(int argc, char **argv) {
     expect("global preference 0.5", sym_params_set_global_preference(p, 0.5), SYM_STATUS_INVALID_ARGUMENT, 1);
     expect("global preference 1", sym_params_set_global_preference(p, 1.0), SYM_STATUS_OK, 0);
     expect("global preference NULL params", sym_params_set_global_preference(NULL, 3.0), SYM_STATUS_NULL_PARAMETER, 1);
+    expect("curvature weight NaN", sym_params_set_curvature_weight(p, NAN), SYM_STATUS_INVALID_ARGUMENT, 1);
+    expect("curvature weight inf", sym_params_set_curvature_weight(p, INFINITY), SYM_STATUS_INVALID_ARGUMENT, 1);
+    expect("curvature weight -0.01", sym_params_set_curvature_weight(p, -0.01), SYM_STATUS_INVALID_ARGUMENT, 1);
+    expect("curvature weight NULL params", sym_params_set_curvature_weight(NULL, 0.0), SYM_STATUS_NULL_PARAMETER, 1);
+    expect("curvature weight 0.03", sym_params_set_curvature_weight(p, 0.03), SYM_STATUS_OK, 0);
     expect("proxy off", sym_params_set_proxy_vertices(p, 0), SYM_STATUS_OK, 0);
     expect("proxy 6000", sym_params_set_proxy_vertices(p, 6000), SYM_STATUS_OK, 0);
     expect("valid setter", sym_params_set_groups(p, 0), SYM_STATUS_OK, 0);
