@@ -97,6 +97,7 @@ use faer::Mat;
 
 use crate::characterize::{self, Continuous, ContinuousParams};
 use crate::cluster;
+use crate::descriptors::curvature::Raw;
 use crate::descriptors::{wks, WksParams};
 use crate::distance::biharmonic;
 use crate::error::Error;
@@ -276,11 +277,11 @@ impl Params {
 /// ([`crate::descriptors::curvature`]), from the raw curvature `raw` when given (a coarse
 /// mesh's, averaged from its fine mesh) or else estimated on `mesh` with its `normals`; `None`
 /// when the curvature term is off.
-pub(crate) fn band_limited_curvature(raw: Option<&[f64]>, mesh: &Mesh, normals: &[[f64; 3]], basis: &Eigenbasis, maps: &MapParams) -> Option<Vec<f64>> {
+pub(crate) fn band_limited_curvature(raw: Option<&Raw>, mesh: &Mesh, normals: &[[f64; 3]], basis: &Eigenbasis, maps: &MapParams) -> Option<Vec<f64>> {
     use crate::descriptors::curvature::{band_limited, raw_mean_curvature};
     (maps.curvature_weight > 0.0).then(|| match raw {
         Some(raw) => band_limited(raw, basis, maps.curvature_time),
-        None => band_limited(&raw_mean_curvature(mesh, normals).0, basis, maps.curvature_time),
+        None => band_limited(&Raw::on_mesh(raw_mean_curvature(mesh, normals).0), basis, maps.curvature_time),
     })
 }
 
@@ -622,7 +623,8 @@ fn detect_surface(mesh: Mesh, params: &Params, raw: Option<Vec<f64>>, progress: 
         None
     };
     let Some(h) = built else {
-        let (det, spectral) = pipeline(&mesh, params, None, raw.as_deref(), progress)?;
+        let raw = raw.map(Raw::on_mesh);
+        let (det, spectral) = pipeline(&mesh, params, None, raw.as_ref(), progress)?;
         return Ok(PartResult { det, spectral, domain: mesh, hierarchy: None, closed: None });
     };
     let building = t.elapsed().as_secs_f64();
@@ -634,8 +636,11 @@ fn detect_surface(mesh: Mesh, params: &Params, raw: Option<Vec<f64>>, progress: 
     let oriented = mesh.oriented_triangles();
     let normals = mesh.vertex_normals(&oriented);
     let curvature = (params.maps.curvature_weight > 0.0).then(|| {
-        let (estimated, mass) = crate::descriptors::curvature::raw_mean_curvature(&mesh, &normals);
-        crate::descriptors::curvature::restrict_to_cells(raw.as_deref().unwrap_or(&estimated), &mass, &h.owner, coarse.num_vertices())
+        use crate::descriptors::curvature::{raw_mean_curvature, restrict_to_cells, split_cells};
+        let (estimated, mass) = raw_mean_curvature(&mesh, &normals);
+        let values = raw.as_deref().unwrap_or(&estimated);
+        let halves = split_cells(values, &mass, &h.owner, &h.seeds, &mesh.vertices, &normals);
+        Raw { values: restrict_to_cells(values, &mass, &h.owner, coarse.num_vertices()), halves: Some(halves) }
     });
     // The fine lumped mass: the coarse eigenbasis's cell masses, later the judge's band.
     let fine_mass = crate::spectral::mass::lumped_mass(&mesh, &crate::spectral::cotan::mollified_edge_lengths(&mesh));
@@ -643,7 +648,7 @@ fn detect_surface(mesh: Mesh, params: &Params, raw: Option<Vec<f64>>, progress: 
     if !progress(0.1) {
         return Err(Error::Cancelled { stage: "hierarchy" });
     }
-    let (mut det, spectral) = pipeline(&coarse, params, Some(&cell_mass), curvature.as_deref(), &mut |f| progress(0.1 + 0.8 * f))?;
+    let (mut det, spectral) = pipeline(&coarse, params, Some(&cell_mass), curvature.as_ref(), &mut |f| progress(0.1 + 0.8 * f))?;
     let t = Instant::now();
     let m = coarse.num_vertices();
     // The coarse detection's indices are the coarse mesh's inputs; its vertex c is input
@@ -904,7 +909,7 @@ fn swap(
 /// a finer mesh ([`crate::hierarchy::Hierarchy::cell_mass`],
 /// [`crate::descriptors::curvature::restrict_to_cells`]); `None` computes them on `mesh`
 /// (its lumped mass; the curvature estimated on it).
-fn pipeline(mesh: &Mesh, params: &Params, mass: Option<&[f64]>, curvature: Option<&[f64]>, progress: &mut dyn FnMut(f64) -> bool) -> Result<(Detection, Spectral), Error> {
+fn pipeline(mesh: &Mesh, params: &Params, mass: Option<&[f64]>, curvature: Option<&Raw>, progress: &mut dyn FnMut(f64) -> bool) -> Result<(Detection, Spectral), Error> {
     let t_all = Instant::now();
     let mut timings = Timings::default();
     let cancelled = |stage: &'static str| Error::Cancelled { stage };

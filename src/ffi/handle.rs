@@ -328,9 +328,7 @@ pub extern "C" fn sym_params_set_global_preference(params: *mut sym_params, valu
 /// Weight of the polish's one extrinsic cue, band-limited mean curvature, which also ranks
 /// the symmetries and drops maps that change it far more than a true symmetry does; a finite
 /// number ≥ 0 (default 0.03; 0: purely intrinsic maps and ranking, for a shape that bends
-/// without stretching, or a noisy scan of more than 24,000 vertices: on noisy 60k scans 0
-/// gave 93.0% against 87.6%, on clean ones 89.8% against 95.2%; docs/hierarchy-benchmark.md,
-/// "Session 40"; added in 0.7.4). Returns
+/// without stretching; the cue fades by itself on noisy meshes; added in 0.7.4). Returns
 /// `SYM_STATUS_INVALID_ARGUMENT` (settings unchanged) outside the range.
 #[no_mangle]
 pub extern "C" fn sym_params_set_curvature_weight(params: *mut sym_params, value: f64) -> sym_status {
