@@ -37,7 +37,8 @@
 //! What is computed at full resolution: only the cells, the lumped mass (summed into the cell
 //! masses; also the judge's band trace), the lift (O(n log n) and O(n)), the
 //! judge's stencils, the mean curvature of the polish's curvature term (one pass over the
-//! triangles, averaged over each cell: [`crate::descriptors::curvature`]) and the outputs
+//! triangles, averaged over each cell and over two halves of each cell, whose disagreement
+//! tells a noisy scan: [`crate::descriptors::curvature`]) and the outputs
 //! themselves (maps and confidences). No eigenpair, descriptor or dense `n × k`
 //! matrix of the fine mesh is ever formed, so memory grows linearly with the vertices. The
 //! functional map and complexity reported for a symmetry are those of the coarse mesh's
