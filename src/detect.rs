@@ -636,11 +636,8 @@ fn detect_surface(mesh: Mesh, params: &Params, raw: Option<Vec<f64>>, progress: 
     let oriented = mesh.oriented_triangles();
     let normals = mesh.vertex_normals(&oriented);
     let curvature = (params.maps.curvature_weight > 0.0).then(|| {
-        use crate::descriptors::curvature::{raw_mean_curvature, restrict_to_cells, split_cells};
-        let (estimated, mass) = raw_mean_curvature(&mesh, &normals);
-        let values = raw.as_deref().unwrap_or(&estimated);
-        let halves = split_cells(values, &mass, &h.owner, &h.seeds, &mesh.vertices, &normals);
-        Raw { values: restrict_to_cells(values, &mass, &h.owner, coarse.num_vertices()), halves: Some(halves) }
+        let (estimated, mass) = crate::descriptors::curvature::raw_mean_curvature(&mesh, &normals);
+        Raw::on_cells(raw.as_deref().unwrap_or(&estimated), &mass, &h, &mesh.vertices, &normals)
     });
     // The fine lumped mass: the coarse eigenbasis's cell masses, later the judge's band.
     let fine_mass = crate::spectral::mass::lumped_mass(&mesh, &crate::spectral::cotan::mollified_edge_lengths(&mesh));
@@ -907,7 +904,7 @@ fn swap(
 /// [`detect`] on the current thread, on one connected mesh. `mass` and `curvature`: the
 /// vertex masses of the eigenbasis and the raw mean curvature of its vertices when known from
 /// a finer mesh ([`crate::hierarchy::Hierarchy::cell_mass`],
-/// [`crate::descriptors::curvature::restrict_to_cells`]); `None` computes them on `mesh`
+/// [`crate::descriptors::curvature::Raw::on_cells`]); `None` computes them on `mesh`
 /// (its lumped mass; the curvature estimated on it).
 fn pipeline(mesh: &Mesh, params: &Params, mass: Option<&[f64]>, curvature: Option<&Raw>, progress: &mut dyn FnMut(f64) -> bool) -> Result<(Detection, Spectral), Error> {
     let t_all = Instant::now();

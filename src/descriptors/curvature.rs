@@ -26,7 +26,7 @@
 //! so orientation-reversing and -preserving maps alike are compared on one field.
 //!
 //! On a large mesh detected on its coarse version ([`crate::hierarchy`]) `h` is computed on
-//! the fine mesh and averaged over each coarse vertex's cell ([`restrict_to_cells`]), then
+//! the fine mesh and averaged over each coarse vertex's cell ([`Raw::on_cells`]), then
 //! low-passed in the coarse basis: estimated on the coarse mesh's long, irregular triangles
 //! instead, the term lowered the 60k KIDS poses 1 and 5 from 99.8 / 97.1% to 96.0 / 91.5%
 //! acc@0.05 (at full resolution, without the hierarchy, it raised them: 94.4 / 88.5% to 95.3
@@ -41,7 +41,7 @@
 //! (docs/hierarchy-benchmark.md, "Session 40": against the *fine* field's energy the noisy
 //! poses keep 0.05, but so do the subdivided kids, whose creases the cells integrate
 //! faithfully). What does is the error of `h_s` itself: each
-//! cell is cut in two by a plane through its seed ([`split_cells`]), each half's mean is
+//! cell is cut in two by a plane through its seed ([`Raw::on_cells`]), each half's mean is
 //! low-passed like the whole's, and the two estimates `a`, `b` compared,
 //! $$ρ = ‖a_s − b_s‖_M / ‖a_s + b_s‖_M,$$
 //! an estimate of the relative error of `h_s` (the halves' errors are independent where the
@@ -77,6 +77,7 @@
 //! images that geodesics leave nearly tied.
 
 use crate::mesh::vec3::{cross, dot, norm, sub};
+use crate::hierarchy::Hierarchy;
 use crate::mesh::Mesh;
 use crate::spectral::Eigenbasis;
 
@@ -118,7 +119,7 @@ pub struct Raw {
     /// `h` at each vertex.
     pub values: Vec<f64>,
     /// On a hierarchy's coarse mesh, the means of `h` over two halves of each cell
-    /// ([`split_cells`]): two independent estimates of `values` whose agreement after the
+    /// ([`Raw::on_cells`]): two independent estimates of `values` whose agreement after the
     /// low-pass measures the noise the cells' means still carry. `None` at full resolution.
     pub halves: Option<[Vec<f64>; 2]>,
 }
@@ -127,6 +128,48 @@ impl Raw {
     /// A field estimated on the mesh itself.
     pub fn on_mesh(values: Vec<f64>) -> Raw {
         Raw { values, halves: None }
+    }
+
+    /// A fine per-vertex field carried to the coarse mesh of `hierarchy` (its `owner`
+    /// partition of the fine vertices, its `seeds`): `values` the mass-weighted mean of
+    /// `fine` over each cell (`mass` the fine lumped mass; the coarse mesh's long, irregular
+    /// triangles estimate curvature poorly, the fine mesh's well) and `halves` the means over
+    /// two halves of each cell. A fine vertex `v` of the cell of coarse vertex `c` is in the
+    /// first half when `(p_v − p_seed) · t ≥ 0`, `t` a fixed direction projected onto the
+    /// seed's tangent plane (`positions` and `normals` of the fine vertices), so each half is
+    /// a contiguous patch (a crease or a facet is split, not sampled). A cell without a
+    /// finite value gets 0, a half without one the whole cell's mean. One pass over the fine
+    /// vertices.
+    pub fn on_cells(fine: &[f64], mass: &[f64], hierarchy: &Hierarchy, positions: &[[f64; 3]], normals: &[[f64; 3]]) -> Raw {
+        let (owner, seeds) = (&hierarchy.owner, &hierarchy.seeds);
+        let m = seeds.len();
+        // The tangent direction at each seed: a fixed direction without the normal's component
+        // (another where the two are nearly parallel).
+        let tangents: Vec<[f64; 3]> = seeds
+            .iter()
+            .map(|&s| {
+                let n = normals[s];
+                let along = |e: [f64; 3]| sub(e, n.map(|x| dot(e, n) * x));
+                let t = along([0.93, 0.31, 0.19]);
+                if norm(t) > 0.3 { t } else { along([-0.19, 0.31, 0.93]) }
+            })
+            .collect();
+        let (mut sum, mut weight) = (vec![0.0f64; m], vec![0.0f64; m]);
+        let (mut half_sum, mut half_weight) = ([vec![0.0f64; m], vec![0.0f64; m]], [vec![0.0f64; m], vec![0.0f64; m]]);
+        for (v, &c) in owner.iter().enumerate() {
+            let c = c as usize;
+            if c < m && fine[v].is_finite() {
+                sum[c] += mass[v] * fine[v];
+                weight[c] += mass[v];
+                let side = usize::from(dot(sub(positions[v], positions[seeds[c]]), tangents[c]) < 0.0);
+                half_sum[side][c] += mass[v] * fine[v];
+                half_weight[side][c] += mass[v];
+            }
+        }
+        let mean = |s: &[f64], w: &[f64], c: usize| (w[c] > 0.0).then(|| s[c] / w[c]);
+        let values: Vec<f64> = (0..m).map(|c| mean(&sum, &weight, c).unwrap_or(0.0)).collect();
+        let halves = [0, 1].map(|side| (0..m).map(|c| mean(&half_sum[side], &half_weight[side], c).unwrap_or(values[c])).collect());
+        Raw { values, halves: Some(halves) }
     }
 }
 
@@ -139,60 +182,6 @@ const TRUSTED_ERROR: f64 = 0.5;
 /// From this relative error `ρ` on the term is off: the two halves' low-passed curvatures
 /// differ by 70% of their sum, mostly noise (noisy 60k KIDS poses 0.81–0.98).
 const NOISE_ERROR: f64 = 0.7;
-
-/// The mass-weighted means of a fine per-vertex field over two halves of each cell of a
-/// hierarchy (`mass` and `owner` as for [`restrict_to_cells`], `seeds[c]` the fine vertex of
-/// coarse vertex `c`, `positions` and `normals` the fine mesh's): a fine vertex `v` of the
-/// cell of coarse vertex `c` (fine vertex `seeds[c]`) is in the first half when
-/// `(p_v − p_seed) · t ≥ 0`, `t` a fixed direction projected onto the seed's tangent plane
-/// (`normals` of the fine vertices), so each half is a contiguous patch (a crease or a
-/// facet is split, not sampled). A half without a vertex takes the whole cell's mean.
-pub fn split_cells(values: &[f64], mass: &[f64], owner: &[u32], seeds: &[usize], positions: &[[f64; 3]], normals: &[[f64; 3]]) -> [Vec<f64>; 2] {
-    let m = seeds.len();
-    // The tangent direction at each seed: a fixed direction without the normal's component
-    // (another where the two are nearly parallel).
-    let tangents: Vec<[f64; 3]> = seeds
-        .iter()
-        .map(|&s| {
-            let n = normals[s];
-            let along = |e: [f64; 3]| {
-                let d = dot(e, n);
-                [e[0] - d * n[0], e[1] - d * n[1], e[2] - d * n[2]]
-            };
-            let t = along([0.93, 0.31, 0.19]);
-            if norm(t) > 0.3 { t } else { along([-0.19, 0.31, 0.93]) }
-        })
-        .collect();
-    let (mut sum, mut weight) = ([vec![0.0f64; m], vec![0.0f64; m]], [vec![0.0f64; m], vec![0.0f64; m]]);
-    for (v, &c) in owner.iter().enumerate() {
-        let c = c as usize;
-        if c < m && values[v].is_finite() {
-            let side = usize::from(dot(sub(positions[v], positions[seeds[c]]), tangents[c]) < 0.0);
-            sum[side][c] += mass[v] * values[v];
-            weight[side][c] += mass[v];
-        }
-    }
-    let whole = |c: usize| {
-        let w = weight[0][c] + weight[1][c];
-        if w > 0.0 { (sum[0][c] + sum[1][c]) / w } else { 0.0 }
-    };
-    [0, 1].map(|side| (0..m).map(|c| if weight[side][c] > 0.0 { sum[side][c] / weight[side][c] } else { whole(c) }).collect())
-}
-
-/// The mass-weighted mean of a fine per-vertex field over each cell of a hierarchy
-/// (`mass` the fine lumped mass, `owner[v]` the coarse vertex whose cell holds fine vertex
-/// `v`, `m` coarse vertices): the coarse mesh's long, irregular triangles estimate curvature
-/// poorly, the fine mesh's well.
-pub fn restrict_to_cells(values: &[f64], mass: &[f64], owner: &[u32], m: usize) -> Vec<f64> {
-    let (mut sum, mut weight) = (vec![0.0f64; m], vec![0.0f64; m]);
-    for (v, &c) in owner.iter().enumerate() {
-        if (c as usize) < m && values[v].is_finite() {
-            sum[c as usize] += mass[v] * values[v];
-            weight[c as usize] += mass[v];
-        }
-    }
-    sum.iter().zip(&weight).map(|(s, w)| if *w > 0.0 { s / w } else { 0.0 }).collect()
-}
 
 /// The fraction of the raw curvature's energy (`‖·‖_M`) that the low-passed one keeps, below
 /// which the curvature is taken for noise and its term fades (as the square of the fraction's
@@ -258,6 +247,7 @@ pub fn band_limited(raw: &Raw, basis: &Eigenbasis, tau: f64) -> Vec<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::random::SplitMix;
     use crate::spectral::EigenParams;
 
     /// On a sphere the mean curvature is constant: `h_s` is ±1 everywhere (normalised by its
@@ -290,7 +280,7 @@ mod tests {
         let (coarse, _) = h.coarse.normalized();
         let normals = fine.vertex_normals(&fine.oriented_triangles());
         let (at_seed, mass) = raw_mean_curvature(&fine, &normals);
-        let raw = restrict_to_cells(&at_seed, &mass, &h.owner, coarse.num_vertices());
+        let raw = Raw::on_cells(&at_seed, &mass, &h, &fine.vertices, &normals).values;
         // The curvature varies slowly at the scale of a cell: a cell's mean stays within 10% of
         // its seed's own value.
         let close = h.seeds.iter().zip(&raw).filter(|(&s, &c)| (c - at_seed[s]).abs() <= 0.1 * at_seed[s].abs()).count();
@@ -305,19 +295,16 @@ mod tests {
     /// On a hierarchy the two halves of each cell tell noise from curvature: on a clean
     /// ellipsoid they agree (relative error ρ = 0.015) and the term keeps its weight (the same
     /// field as from the cells' means alone); with noise of ±0.5% of √area on every vertex
-    /// (about a quarter of an edge) they do not (ρ = 1.0) and the term is off, where the
-    /// energy test alone, which sees only the already averaged means, keeps 0.54 of it.
+    /// (about a quarter of an edge) they do not (ρ = 0.90) and the term is off, where the
+    /// energy test alone, which sees only the already averaged means, keeps 0.57 of it.
     #[test]
     fn the_halves_of_the_cells_turn_noisy_curvature_off() {
         let coarse_curvature = |noise: f64| {
             let (mut fine, _) = crate::shapes::ellipsoid(5, [2.0, 1.0, 1.0]).normalized();
-            let mut state = 0x9e37_79b9_7f4a_7c15u64;
+            let mut random = SplitMix::new(1);
             for p in &mut fine.vertices {
                 for x in p.iter_mut() {
-                    state ^= state << 13;
-                    state ^= state >> 7;
-                    state ^= state << 17;
-                    *x += noise * ((state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0);
+                    *x += noise * (2.0 * random.unit() - 1.0);
                 }
             }
             let normals = fine.vertex_normals(&fine.oriented_triangles());
@@ -325,10 +312,8 @@ mod tests {
             let h = crate::hierarchy::Hierarchy::new(&fine, 1500).unwrap();
             let (coarse, _) = h.coarse.normalized();
             let basis = Eigenbasis::compute(&coarse, &EigenParams { k: 30, ..Default::default() }).unwrap();
-            let means = restrict_to_cells(&raw, &mass, &h.owner, coarse.num_vertices());
-            let halves = split_cells(&raw, &mass, &h.owner, &h.seeds, &fine.vertices, &normals);
-            let with_halves = band_limited(&Raw { values: means.clone(), halves: Some(halves) }, &basis, 1e-3);
-            (with_halves, band_limited(&Raw::on_mesh(means), &basis, 1e-3))
+            let on_cells = Raw::on_cells(&raw, &mass, &h, &fine.vertices, &normals);
+            (band_limited(&on_cells, &basis, 1e-3), band_limited(&Raw::on_mesh(on_cells.values.clone()), &basis, 1e-3))
         };
         let (clean, clean_means_only) = coarse_curvature(0.0);
         assert_eq!(clean, clean_means_only);
@@ -347,12 +332,9 @@ mod tests {
     fn noise_fades_the_curvature() {
         let median_magnitude = |noise: f64| {
             let mut sphere = crate::shapes::icosphere(4);
-            let mut state = 0x2545_f491_4f6c_dd1du64;
+            let mut random = SplitMix::new(2);
             for p in &mut sphere.vertices {
-                state ^= state << 13;
-                state ^= state >> 7;
-                state ^= state << 17;
-                let r = 1.0 + noise * ((state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0);
+                let r = 1.0 + noise * (2.0 * random.unit() - 1.0);
                 *p = p.map(|x| x * r);
             }
             let (sphere, _) = sphere.normalized();

@@ -160,7 +160,7 @@ impl Hierarchy {
     }
 
     /// A field on the coarse mesh's vertices carried to every fine vertex: each takes its
-    /// cell's value (the counterpart of [`crate::descriptors::curvature::restrict_to_cells`], which
+    /// cell's value (the counterpart of [`crate::descriptors::curvature::Raw::on_cells`], which
     /// averages a fine field over each cell).
     pub fn on_fine(&self, coarse: &[f64]) -> Vec<f64> {
         self.owner.iter().map(|&c| coarse[c as usize]).collect()
