@@ -95,6 +95,11 @@
 //! 8 → 10 and 11 → 12 of 24; 1.0: 2.5k 78, 10k 81. A head on the spiked body (so that no
 //! global front↔back map relates its outer spikes): 2.5k clean / noisy 0 / 2/1/4, 10k 0 /
 //! 4/4/4 of 6, no better: the stage's own spike maps are flipped, not only the global ones.
+//! Session 41, measured and dropped: the whole detection on a midpoint-subdivided copy of the
+//! 2.5k shapes (four times the vertices; each map read back on the original vertices, an
+//! image at an edge's midpoint taken to one of its ends): the 8 directed rows 78 → 76 of 96,
+//! the spikes' four rows 8 → 14 of 24, ×4 the time. Finer geodesics alone do not give the 10k
+//! figures: the subdivided mesh keeps the 2.5k mesh's facets and its noise.
 //!
 //! Measured with `examples/quadruped_report.rs` (`SHAPE=directed|spiked|splayed|lopsided|
 //! ellipsoid`; `bench/parts.sh` runs every row): ordered part pairs whose best reported map has
