@@ -61,9 +61,22 @@
 //! tr_reg_024 at seed 0: first 0.30 → 0.73; TOSCA michael18's best 0.44 → 0.61); over seeds
 //! 0, 10, 20 and 30, best / first over all 89.0 / 88.0 → 89.3 / 88.2% (FAUST 92.9 / 92.7 →
 //! 93.0 / 93.0, SHREC'16 71.0 / 65.9 → 71.8 / 66.9; `docs/accuracy.md`, "Session 33").
+//! Once the searches are pooled, the strongest global symmetry over all of them gets
+//! `MapParams::winner_polish` (8) more passes on the mesh (`polish_strongest`; session 41).
+//! The polish converges slowly on posed shapes: on TOSCA's david13 the first map's accuracy
+//! rose by 0.2–4 points at each of its eight further passes and was still rising, and the
+//! same detection with 24 further passes scored 0.93 against 0.81. Given to each search's
+//! strongest maps, more passes disturbed the ranking (session 25's sixteen: SHREC'16 first
+//! −1.3, a wrong reflection polished further in its own search overtaking another search's
+//! mirror); given to the pool's winner alone, every other map stays as it was, and the
+//! competition is over before they run. Over shared/data at seeds 0, 10, 20 and 30, best /
+//! first acc@0.05 over all 89.4 / 89.1 → 89.7 / 89.4% (TOSCA 89.9 / 89.4 → 90.2 / 89.9,
+//! SHREC'16 72.6 / 72.0 → 73.6 / 72.8, FAUST +0.1; over all up at 4 of 4 seeds; ×1.14 the
+//! time on TOSCA; `docs/accuracy.md`, "Session 41"). Not on a hierarchy's coarse mesh, where
+//! they gained 0.1 point on the 60k KIDS poses for ×1.07–1.18 the time.
 //! On a proxy (meshes of 9,000–24,000 vertices) each search's strongest map, lifted, gets
 //! `MapParams::lift_polish` (4) passes on the mesh itself before the pool compares the
-//! searches' versions (`polish_lifted`; [`crate::maps::proxy`], step 5).
+//! searches' versions (`polish_strongest`; [`crate::maps::proxy`], step 5).
 //!
 //! **The report's order.** Strongest first, but a partial map (a global map cut short where
 //! it failed) counts `Params::global_preference` (3) times less than a global one, and maps
@@ -645,7 +658,11 @@ fn detect_surface(mesh: Mesh, params: &Params, raw: Option<Vec<f64>>, progress: 
     if !progress(0.1) {
         return Err(Error::Cancelled { stage: "hierarchy" });
     }
-    let (mut det, spectral) = pipeline(&coarse, params, Some(&cell_mass), curvature.as_ref(), &mut |f| progress(0.1 + 0.8 * f))?;
+    // No further passes for the winner on the coarse mesh (`MapParams::winner_polish`: +0.1
+    // point for ×1.07–1.18 the time on the 60k KIDS poses).
+    let mut coarse_params = params.clone();
+    coarse_params.maps.winner_polish = 0;
+    let (mut det, spectral) = pipeline(&coarse, &coarse_params, Some(&cell_mass), curvature.as_ref(), &mut |f| progress(0.1 + 0.8 * f))?;
     let t = Instant::now();
     let m = coarse.num_vertices();
     // The coarse detection's indices are the coarse mesh's inputs; its vertex c is input
@@ -961,6 +978,17 @@ fn pipeline(mesh: &Mesh, params: &Params, mass: Option<&[f64]>, curvature: Optio
     }
     let (samples, diameter) = first.expect("at least one search");
     let probes = &samples[..];
+    // The strongest symmetry over all searches gets further passes (`MapParams::winner_polish`).
+    if params.maps.polish > 0 && params.maps.winner_polish > 0 {
+        let t = Instant::now();
+        let ctx = mesh_context(&shared, probes, diameter, params);
+        let anchors = maps::proxy::geodesic_farthest_points(&graph, probes, params.maps.polish_samples.max(params.samples).min(n)).0;
+        let measure = Measure { probes, emb, basis, diameter, params };
+        if !polish_strongest(&ctx, &mut found, &anchors, params.maps.winner_polish, &measure, &mut || progress(0.98)) {
+            return Err(cancelled("polish"));
+        }
+        timings.maps_polish += t.elapsed().as_secs_f64();
+    }
     if !progress(0.99) {
         return Err(cancelled("report"));
     }
@@ -1535,7 +1563,7 @@ fn search(shared: &Shared<'_>, params: &Params, seed: u64, timings: &mut Timings
     // with other searches' versions.
     if params.maps.lift_polish > 0 && params.maps.polish > 0 && proxy.is_some() {
         let mesh_ctx = mesh_context(shared, measure.probes, vinfo.diameter, params);
-        if !polish_lifted(&mesh_ctx, &mut found, &mesh_anchors, &measure, progress) {
+        if !polish_strongest(&mesh_ctx, &mut found, &mesh_anchors, params.maps.lift_polish, &measure, &mut || progress(0.965)) {
             return Err(cancelled("polish"));
         }
     }
@@ -1584,19 +1612,21 @@ fn mesh_context<'a>(shared: &Shared<'a>, probes: &[usize], diameter: f64, params
     ctx
 }
 
-/// The polish on the mesh itself of a proxy's strongest lifted map (`MapParams::lift_polish`
-/// passes, with a cancellation check before each): the proxy's graph
-/// measures geodesics more coarsely than the mesh's edges, and the lift only interpolates
-/// within the proxy's precision (`maps::proxy`). `anchors` are the polish's anchors in the
-/// mesh's indices; `measure` measures maps on the mesh. `false` when cancelled.
-fn polish_lifted(ctx: &Context<'_>, found: &mut [Found], anchors: &[usize], measure: &Measure<'_>, progress: &mut dyn FnMut(f64) -> bool) -> bool {
-    let params = measure.params;
-    let Some(&i) = strongest_indices(found, params, 1).first() else {
+/// `passes` further passes of the polish ([`maps::geodesic::polish_passes_while`], with
+/// `keep_going` asked before each) for the strongest global symmetry of `found` on the mesh
+/// (`ctx`, `anchors` the polish's anchors in its indices, `measure` measuring maps on it); its
+/// verdict is kept until the report judges every map again. Used twice: for a proxy's strongest
+/// lifted map (`MapParams::lift_polish`: the proxy's graph measures geodesics more coarsely
+/// than the mesh's edges, and the lift only interpolates within the proxy's precision,
+/// `maps::proxy`) and for the strongest map over all searches (`MapParams::winner_polish`).
+/// `false` when cancelled.
+fn polish_strongest(ctx: &Context<'_>, found: &mut [Found], anchors: &[usize], passes: usize, measure: &Measure<'_>, keep_going: &mut dyn FnMut() -> bool) -> bool {
+    let Some(&i) = strongest_indices(found, measure.params, 1).first() else {
         return true;
     };
     let geodesics = maps::geodesic::Geodesics::new(ctx);
     geodesics.pin(anchors);
-    let Some((dense, _)) = maps::geodesic::polish_passes_while(ctx, &geodesics, &found[i].dense, anchors, params.maps.lift_polish, &params.maps, &mut || progress(0.965)) else {
+    let Some((dense, _)) = maps::geodesic::polish_passes_while(ctx, &geodesics, &found[i].dense, anchors, passes, &measure.params.maps, keep_going) else {
         return false;
     };
     if dense.map != found[i].dense.map {

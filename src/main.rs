@@ -71,6 +71,10 @@ enum Command {
         /// the others are ranked (0: none; none either with --polish 0).
         #[arg(long, default_value_t = 8)]
         final_polish: usize,
+        /// Further passes of the polish for the strongest symmetry over all searches, once they
+        /// are pooled (0: none; none either with --polish 0).
+        #[arg(long, default_value_t = intrinsym::maps::MapParams::default().winner_polish)]
+        winner_polish: usize,
         /// Weight of the polish's extrinsic cue, band-limited mean curvature, which also ranks
         /// the output and drops maps that change it far more than a true symmetry does (≥ 0;
         /// 0: purely intrinsic maps and ranking, e.g. for a shape that bends without stretching
@@ -207,6 +211,7 @@ fn run(cli: Cli) -> Result<(), intrinsym::Error> {
             accept,
             polish,
             final_polish,
+            winner_polish,
             curvature_weight,
             proxy_vertices,
             lift_polish,
@@ -251,6 +256,7 @@ fn run(cli: Cli) -> Result<(), intrinsym::Error> {
             params.maps.accept = accept;
             params.maps.polish = polish;
             params.maps.final_polish = final_polish;
+            params.maps.winner_polish = winner_polish;
             params.maps.curvature_weight = curvature_weight;
             params.maps.proxy_vertices = proxy_vertices;
             params.maps.lift_polish = lift_polish;

@@ -75,6 +75,7 @@ fn set_param(p: &mut Params, kv: &str) -> Result<(), String> {
         "polish" => p.maps.polish = u()?,
         "final_polish" => p.maps.final_polish = u()?,
         "final_polish_maps" => p.maps.final_polish_maps = u()?,
+        "winner_polish" => p.maps.winner_polish = u()?,
         "polish_samples" => p.maps.polish_samples = u()?,
         "polish_geodesic" => p.maps.polish_geodesic = u()? != 0,
         "curvature_weight" => p.maps.curvature_weight = f()?,

@@ -99,6 +99,14 @@ pub struct MapParams {
     /// 89.7 / 88.7 → 89.9 / 88.8, KIDS unchanged); three maps gained nothing more (every
     /// dataset within ±0.1 of two).
     pub final_polish_maps: usize,
+    /// Further passes of the polish for the strongest global symmetry over all searches, once
+    /// their symmetries are pooled (default 8; 0: none; none either with `polish` = 0). See
+    /// [`mod@crate::detect`], "Further polish of the strongest symmetries": over shared/data at
+    /// four seeds, best / first acc@0.05 89.4 / 89.1 → 89.7 / 89.4% (every dataset up), ×1.14
+    /// the time on TOSCA. Not on a hierarchy's coarse mesh ([`crate::hierarchy`]): there they
+    /// gained 0.1 point on the 60k KIDS poses for ×1.07–1.18 the time, against issue 17's
+    /// budget.
+    pub winner_polish: usize,
     /// Anchor candidates of the polish: voting's samples continued by farthest-point sampling
     /// to this many (default 192, three times voting's), in geodesic distance on the mesh's
     /// edge graph when `polish_geodesic` (the default), else in the biharmonic embedding as
@@ -139,7 +147,7 @@ pub struct MapParams {
 
 impl Default for MapParams {
     fn default() -> Self {
-        MapParams { accept: 0.03, refine: 3, fmap_size: 20, search_vertices: 1000, local_anchors: 16, wks_accept: 0.2, zoomout_fraction: 0.6, zoomout_k: 100, spectral_start: 12, zoomout_step: 5, global_fraction: 0.75, polish: 4, final_polish: 8, final_polish_maps: 2, polish_samples: 192, polish_geodesic: true, curvature_weight: 0.03, curvature_time: 1e-3, proxy_vertices: 6000, lift_polish: 4, orientation: Default::default() }
+        MapParams { accept: 0.03, refine: 3, fmap_size: 20, search_vertices: 1000, local_anchors: 16, wks_accept: 0.2, zoomout_fraction: 0.6, zoomout_k: 100, spectral_start: 12, zoomout_step: 5, global_fraction: 0.75, polish: 4, final_polish: 8, final_polish_maps: 2, winner_polish: 8, polish_samples: 192, polish_geodesic: true, curvature_weight: 0.03, curvature_time: 1e-3, proxy_vertices: 6000, lift_polish: 4, orientation: Default::default() }
     }
 }
 

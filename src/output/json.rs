@@ -2,7 +2,7 @@
 //!
 //! ```text
 //! { "vertices": n, "faces": m,
-//!   "params": { "eigenpairs", "samples", "seed", "restarts", "min_score_ratio", "global_preference", "wks_quantile", "eps", "accept", "polish", "final_polish", "proxy_vertices", "lift_polish", "hierarchy_vertices", "min_hole", "max_hole", "groups", "parts" },
+//!   "params": { "eigenpairs", "samples", "seed", "restarts", "min_score_ratio", "global_preference", "wks_quantile", "eps", "accept", "polish", "final_polish", "winner_polish", "proxy_vertices", "lift_polish", "hierarchy_vertices", "min_hole", "max_hole", "groups", "parts" },
 //!   "timings": { "spectral", "descriptors", "distance", "sampling", "voting", "maps",
 //!                "maps_proxy", "maps_profile", "maps_fmap", "maps_refine", "maps_polish", "maps_compose", "maps_lift", "parts",
 //!                "congruence", "hierarchy", "lift", "characterize", "cluster", "total" },   // seconds
@@ -93,6 +93,7 @@ pub fn to_json(det: &Detection, params: &Params) -> Value {
             "accept": params.maps.accept,
             "polish": params.maps.polish,
             "final_polish": params.maps.final_polish,
+            "winner_polish": params.maps.winner_polish,
             "proxy_vertices": params.maps.proxy_vertices,
             "lift_polish": params.maps.lift_polish,
             "hierarchy_vertices": params.hierarchy_vertices,
