@@ -960,7 +960,8 @@ fn pipeline(mesh: &Mesh, params: &Params, mass: Option<&[f64]>, curvature: Optio
     // Searches from different first samples until one finds a symmetry the judge trusts
     // (`Params::restarts`); their symmetries are pooled.
     let mut found: Vec<Found> = Vec::new();
-    let mut first: Option<(Vec<usize>, f64)> = None;
+    // The first search's samples, their diameter and the polish's anchors.
+    let mut first: Option<(Vec<usize>, f64, Vec<usize>)> = None;
     let mut candidates = 0;
     let searches = params.restarts + 1;
     for r in 0..searches {
@@ -970,19 +971,18 @@ fn pipeline(mesh: &Mesh, params: &Params, mass: Option<&[f64]>, curvature: Optio
         let run = search(&shared, params, params.seed.wrapping_add(r as u64), &mut run_timings, &mut |f| progress(lo + (f - 0.6) / 0.36 * (hi - lo)))?;
         timings.accumulate(&run_timings);
         candidates += run.candidates;
-        let (probes, diameter) = first.get_or_insert_with(|| (run.samples.clone(), run.diameter));
+        let (probes, diameter, _) = first.get_or_insert_with(|| (run.samples.clone(), run.diameter, run.anchors));
         pool(&mut found, run.found, &mesh_judge, emb, probes, params.maps.accept * 2.0 * *diameter, params);
         if strongest(&found, params) >= params.restart_below {
             break;
         }
     }
-    let (samples, diameter) = first.expect("at least one search");
+    let (samples, diameter, anchors) = first.expect("at least one search");
     let probes = &samples[..];
     // The strongest symmetry over all searches gets further passes (`MapParams::winner_polish`).
     if params.maps.polish > 0 && params.maps.winner_polish > 0 {
         let t = Instant::now();
         let ctx = mesh_context(&shared, probes, diameter, params);
-        let anchors = maps::proxy::geodesic_farthest_points(&graph, probes, params.maps.polish_samples.max(params.samples).min(n)).0;
         let measure = Measure { probes, emb, basis, diameter, params };
         if !polish_strongest(&ctx, &mut found, &anchors, params.maps.winner_polish, &measure, &mut || progress(0.98)) {
             return Err(cancelled("polish"));
@@ -1157,6 +1157,8 @@ struct Search {
     samples: Vec<usize>,
     /// The samples' biharmonic diameter.
     diameter: f64,
+    /// The polish's anchors in the mesh's indices (the samples, continued).
+    anchors: Vec<usize>,
     /// Candidates voting produced.
     candidates: usize,
 }
@@ -1202,10 +1204,11 @@ fn search(shared: &Shared<'_>, params: &Params, seed: u64, timings: &mut Timings
     let t_stage = Instant::now();
     // The maps stage works in the vertex indices of its domain: the proxy's, whose first
     // vertices are the polish's anchors (voting's samples first), or the mesh's.
-    // (On a proxy, the anchors in the mesh's indices are kept for the polish on the mesh.)
+    // (The anchors in the mesh's indices are kept for the polish on the mesh: a proxy's lifted
+    // maps', and the strongest map's over all searches.)
     let (probes, polish_anchors, mesh_anchors): (Vec<usize>, Vec<usize>, Vec<usize>) = match &proxy {
         Some(_) => ((0..samples.vertices.len()).collect(), (0..polish_anchors.len()).collect(), polish_anchors),
-        None => (samples.vertices.clone(), polish_anchors, Vec::new()),
+        None => (samples.vertices.clone(), polish_anchors.clone(), polish_anchors),
     };
     let probes = &probes[..];
     // The mesh's embedding and basis, for judging the lifted maps after the maps stage.
@@ -1569,7 +1572,7 @@ fn search(shared: &Shared<'_>, params: &Params, seed: u64, timings: &mut Timings
     }
     timings.maps_lift = t_stage.elapsed().as_secs_f64();
     timings.maps = t.elapsed().as_secs_f64();
-    Ok(Search { found, samples: samples.vertices, diameter: vinfo.diameter, candidates: candidates.len() })
+    Ok(Search { found, samples: samples.vertices, diameter: vinfo.diameter, anchors: mesh_anchors, candidates: candidates.len() })
 }
 
 /// What the maps stage measures a map by on one domain (the maps' domain, or the mesh once

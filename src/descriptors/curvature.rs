@@ -154,6 +154,8 @@ impl Raw {
                 if norm(t) > 0.3 { t } else { along([-0.19, 0.31, 0.93]) }
             })
             .collect();
+        // The whole cells' sums are kept apart from the halves' (not added up from them), so
+        // the cells' means do not depend on the split, to the last bit.
         let (mut sum, mut weight) = (vec![0.0f64; m], vec![0.0f64; m]);
         let (mut half_sum, mut half_weight) = ([vec![0.0f64; m], vec![0.0f64; m]], [vec![0.0f64; m], vec![0.0f64; m]]);
         for (v, &c) in owner.iter().enumerate() {
