@@ -106,7 +106,9 @@ pub struct MapParams {
     /// the time on TOSCA; sixteen passes gained nothing more (over all +0.0 / +0.0 at seeds 0
     /// and 10). Not on a hierarchy's coarse mesh ([`crate::hierarchy`]): there they
     /// gained 0.1 point on the 60k KIDS poses for ×1.07–1.18 the time, against issue 17's
-    /// budget.
+    /// budget. Since session 42 these are settling passes ([`geodesic::Pass::Settle`]): over
+    /// the same four seeds 89.7 / 89.4 → 90.3 / 90.0% (TOSCA +1.2 / +1.1, SHREC'16 +1.0 /
+    /// +1.2).
     pub winner_polish: usize,
     /// Anchor candidates of the polish: voting's samples continued by farthest-point sampling
     /// to this many (default 192, three times voting's), in geodesic distance on the mesh's
