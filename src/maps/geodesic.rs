@@ -642,19 +642,11 @@ pub fn try_polish(ctx: &Context<'_>, geodesics: &Geodesics, m: &DenseMap, sample
     let pairs = Pairs::new(&ga, &gb, &src, &dst, involution);
     let anchors = pairs.all(&anchors);
 
-    // 2. Dense map, breadth-first from the anchors so neighbours' images are good starts.
+    // 2. Dense map: a search's pass places vertices breadth-first from the anchors, so that
+    //    neighbours' images are good starts; a settling pass places each from the previous map.
     let mut image = m.image.clone();
     let mut mismatch = vec![0.0; n];
     let mut done = vec![false; n];
-    let mut queue = std::collections::VecDeque::new();
-    let mut seen = vec![false; n];
-    for &j in &anchors {
-        let a = pairs.pair(j).0;
-        if !seen[a] {
-            seen[a] = true;
-            queue.push_back(a);
-        }
-    }
     // Leave one out: an anchor is not evidence for its own image, so an anchor that is off
     // moves with its neighbours' evidence (and the next pass takes the moved image).
     // Each anchor's source vertex and distance column, looked up once per pass (not once per
@@ -663,8 +655,8 @@ pub fn try_polish(ctx: &Context<'_>, geodesics: &Geodesics, m: &DenseMap, sample
     let profile_of = |v: usize, profile: &mut Vec<(usize, f64)>| {
         super::nearest_profile(sources.iter().filter(|&&(_, a, _)| a != v).map(|&(j, _, column)| (j, column[v])), k, profile);
     };
-    // Each vertex's profile, on all cores (the descents below are sequential: each starts from
-    // its mapped neighbours' images), kept for judging the smoothed map (the anchors do not
+    // Each vertex's profile, on all cores (a search pass's descents are sequential: each starts
+    // from its mapped neighbours' images), kept for judging the smoothed map (the anchors do not
     // change). A vertex has `profile_len[v] ≤ k` entries at `profiles[v·k..]`.
     let chunks = crate::parallel::chunks(n, |range| {
         let mut profile = Vec::new();
@@ -692,41 +684,8 @@ pub fn try_polish(ctx: &Context<'_>, geodesics: &Geodesics, m: &DenseMap, sample
                 done[v] = true;
             }
         }
-        queue.clear();
-    }
-    while let Some(v) = queue.pop_front() {
-        let profile = &profiles[v * k..v * k + profile_len[v]];
-        let c = |w: usize| pairs.cost(profile, w) + ctx.curvature_cost(v, w, params.curvature_weight);
-        let near = profile.iter().fold(profile[0], |b, &p| if p.1 < b.1 { p } else { b }).0;
-        // The best start; a candidate equal to the current one has its cost (neighbours often
-        // share an image), and the descent starts from the known cost.
-        let mut start = (image[v], c(image[v]));
-        let near_image = pairs.pair(near).1;
-        if near_image != start.0 {
-            let cn = c(near_image);
-            if cn < start.1 {
-                start = (near_image, cn);
-            }
-        }
-        for &u in ctx.neighbours(v) {
-            if done[u as usize] && image[u as usize] != start.0 {
-                let cu = c(image[u as usize]);
-                if cu < start.1 {
-                    start = (image[u as usize], cu);
-                }
-            }
-        }
-        let (w, cw) = super::descend_from(ctx, start, c);
-        image[v] = w;
-        // The mismatch judges distances alone (region, confidence): without the curvature term.
-        mismatch[v] = cw - ctx.curvature_cost(v, w, params.curvature_weight);
-        done[v] = true;
-        for &u in ctx.neighbours(v) {
-            if !seen[u as usize] {
-                seen[u as usize] = true;
-                queue.push_back(u as usize);
-            }
-        }
+    } else {
+        breadth_first(ctx, &pairs, &anchors, &profiles, &profile_len, params, &mut image, &mut mismatch, &mut done);
     }
     // The region, judged on geodesics now: the vertices whose distances the map preserves and
     // whose local geometry (WKS) it keeps. A partial map that the polish extended over
@@ -777,6 +736,59 @@ pub fn try_polish(ctx: &Context<'_>, geodesics: &Geodesics, m: &DenseMap, sample
     })
 }
 
+/// The search pass's dense step: vertices breadth-first from the anchors' sources, each to
+/// the descent of its cost (`profiles` as in [`try_polish`]) from the best of its current
+/// image, its nearest anchor's image and its already placed neighbours' images; the mismatch
+/// of the profile term alone. Vertices no anchor reaches stay as they are (`done` false).
+#[allow(clippy::too_many_arguments)]
+fn breadth_first(ctx: &Context<'_>, pairs: &Pairs<'_>, anchors: &[usize], profiles: &[(usize, f64)], profile_len: &[usize], params: &MapParams, image: &mut [usize], mismatch: &mut [f64], done: &mut [bool]) {
+    let k = params.local_anchors;
+    let n = image.len();
+    let mut queue = std::collections::VecDeque::new();
+    let mut seen = vec![false; n];
+    for &j in anchors {
+        let a = pairs.pair(j).0;
+        if !seen[a] {
+            seen[a] = true;
+            queue.push_back(a);
+        }
+    }
+    while let Some(v) = queue.pop_front() {
+        let profile = &profiles[v * k..v * k + profile_len[v]];
+        let c = |w: usize| pairs.cost(profile, w) + ctx.curvature_cost(v, w, params.curvature_weight);
+        let near = profile.iter().fold(profile[0], |b, &p| if p.1 < b.1 { p } else { b }).0;
+        // The best start; a candidate equal to the current one has its cost (neighbours often
+        // share an image), and the descent starts from the known cost.
+        let mut start = (image[v], c(image[v]));
+        let near_image = pairs.pair(near).1;
+        if near_image != start.0 {
+            let cn = c(near_image);
+            if cn < start.1 {
+                start = (near_image, cn);
+            }
+        }
+        for &u in ctx.neighbours(v) {
+            if done[u as usize] && image[u as usize] != start.0 {
+                let cu = c(image[u as usize]);
+                if cu < start.1 {
+                    start = (image[u as usize], cu);
+                }
+            }
+        }
+        let (w, cw) = super::descend_from(ctx, start, c);
+        image[v] = w;
+        // The mismatch judges distances alone (region, confidence): without the curvature term.
+        mismatch[v] = cw - ctx.curvature_cost(v, w, params.curvature_weight);
+        done[v] = true;
+        for &u in ctx.neighbours(v) {
+            if !seen[u as usize] {
+                seen[u as usize] = true;
+                queue.push_back(u as usize);
+            }
+        }
+    }
+}
+
 /// The settling pass's dense step: each vertex `v` with anchors in reach goes to the lowest
 /// end of the descents of its cost from its previous image, its nearest anchor's image and its
 /// neighbours' previous images (each distinct start descended; ties to the lowest vertex), with
@@ -801,7 +813,11 @@ fn settle_images(ctx: &Context<'_>, pairs: &Pairs<'_>, profiles: &[(usize, f64)]
                 starts.extend(ctx.neighbours(v).iter().map(|&u| previous[u as usize]));
                 starts.sort_unstable();
                 starts.dedup();
-                let (w, cw) = starts.iter().map(|&s0| super::descend_from(ctx, (s0, c(s0)), c)).fold((0, f64::INFINITY), |b, x| if x.1 < b.1 { x } else { b });
+                // The first of the lowest ends (`reduce`, not a fold from an infinite cost: where
+                // every cost is infinite, a vertex whose nearest anchors lie partly in another
+                // component, the end of the first start is kept, as a search's pass keeps its
+                // start, not vertex 0).
+                let (w, cw) = starts.iter().map(|&s0| super::descend_from(ctx, (s0, c(s0)), c)).reduce(|b, x| if x.1 < b.1 { x } else { b })?;
                 Some((w, cw - ctx.curvature_cost(v, w, params.curvature_weight)))
             })
             .collect::<Vec<_>>()
