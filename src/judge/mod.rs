@@ -87,7 +87,7 @@
 //! scale of the stencils (0.04·√area), and the reversal counts the jitter as incoherence. In all
 //! seven pairs of copies of one mirror that shared/data reported until 0.7.7 the more precise
 //! copy had the lower reversal (FAUST 0.91–0.95 against 0.96–0.98; TOSCA david6 0.896 against
-//! 0.922 at 0.885 against 0.731 acc@0.05), and the settling passes raise accuracy while
+//! 0.922, for 0.885 against 0.731 acc@0.05), and the settling passes raise accuracy while
 //! lowering the score. Coarser stencils (0.06, 0.08·√area) cost 1.1 and 2.9 points on 13 TOSCA
 //! shapes, because the maps stage picks among versions with this judge too.
 
