@@ -3,7 +3,8 @@
 //!
 //! The phases: **hypotheses** (voting's candidates as profile maps, and the orientation-reversing
 //! functional map of [`crate::maps::orientation`]) → **refine** (ZoomOut and a second profile
-//! pass, then the geodesic polish) → **judge** ([`crate::judge`]) → **report** (compositions
+//! pass, then the geodesic polish; then the parity variants of the strongest map,
+//! [`crate::maps::parity`], polished alike) → **judge** ([`crate::judge`]) → **report** (compositions
 //! complete the group, maps between repeated parts are added when [`crate::parts`] is
 //! enabled, maps are lifted from a proxy, characterised and grouped).
 //!
@@ -92,6 +93,17 @@
 //! On a proxy (meshes of 9,000–24,000 vertices) each search's strongest map, lifted, gets
 //! `MapParams::lift_polish` (4) passes on the mesh itself before the pool compares the
 //! searches' versions (`polish_strongest`; [`crate::maps::proxy`], step 5).
+//!
+//! **Parity variants of the strongest map (beyond the paper; session 44).** Once a search's
+//! maps are polished, its strongest global map gets up to two *parity variants*
+//! ([`crate::maps::parity`]: its functional map with one or two of the lowest even
+//! eigenfunctions made odd, read as a point map), polished like every map. A variant whose
+//! polished map still has the flipped parity is a different map, and it competes with the
+//! search's maps like any refined hypothesis (the version the judge scores higher is kept);
+//! one that went back to the parity it came from is dropped (it is a version of the map it
+//! came from, and would win on smoothness rather than precision). This mends maps that reflect
+//! a part in place instead of swapping it with its mirror image (TOSCA michael18's legs); see
+//! `docs/accuracy.md`, "Session 44".
 //!
 //! **The report's order.** Strongest first, but a partial map (a global map cut short where
 //! it failed) counts `Params::global_preference` (3) times less than a global one, and maps
@@ -1495,6 +1507,27 @@ fn search(shared: &Shared<'_>, params: &Params, seed: u64, timings: &mut Timings
     // apart before it).
     let mut found = once(found);
     timings.maps_polish = t_stage.elapsed().as_secs_f64() + polish_sampling;
+    // Phase 2b (beyond the paper): parity variants of the strongest map (`maps::parity`),
+    // polished like every map; one that kept its parity competes with what was found.
+    if let (Some(geodesics), Some(&strongest)) = (&geodesics, strongest_indices(&found, params, 1).first()) {
+        let variants = maps::parity::variants(&ctx, &found[strongest].dense.map, probes, &params.maps, params.max_fixed);
+        let polished = crate::parallel::map(&variants, |v: &maps::parity::Variant| maps::geodesic::polish_passes(&ctx, geodesics, &v.dense, &polish_anchors, params.maps.polish, &params.maps).0);
+        for (variant, dense) in variants.iter().zip(polished) {
+            if !maps::parity::keeps_parity(&ctx, &dense.map, &variant.flip) {
+                continue;
+            }
+            let distortion = measure.distortion(&dense.map);
+            let verdict = verdict(&dense);
+            if distortion > params.max_distortion || verdict.fixed > params.max_fixed {
+                continue;
+            }
+            let complexity = measure.complexity(&dense.map);
+            let seed = (probes[0], dense.image[probes[0]]);
+            let candidate = Found { dense, part: false, seed, distortion, complexity, verdict };
+            let known = same_as(&candidate.dense, verdict.reverses(), &found, 0.5);
+            keep_better(&mut found, known, candidate);
+        }
+    }
     let t_stage = Instant::now();
     // Phase 3 (beyond the paper): the symmetries of a shape form a group, so the composition of
     // two global symmetries is one too. Voting and the refinement budget find generators (two

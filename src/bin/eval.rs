@@ -85,6 +85,8 @@ fn set_param(p: &mut Params, kv: &str) -> Result<(), String> {
         "global_fraction" => p.maps.global_fraction = f()?,
         "proxy_vertices" => p.maps.proxy_vertices = u()?,
         "lift_polish" => p.maps.lift_polish = u()?,
+        "parity_flips" => p.maps.parity_flips = u()?,
+        "parity_variants" => p.maps.parity_variants = u()?,
         "hierarchy_vertices" => p.hierarchy_vertices = u()?,
         "max_hole" => p.max_hole = f()?,
         "min_hole" => p.min_hole = f()?,

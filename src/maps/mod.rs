@@ -29,6 +29,7 @@ use faer::Mat;
 pub mod congruent;
 pub mod geodesic;
 pub mod orientation;
+pub mod parity;
 pub mod proxy;
 pub mod spectral_init;
 pub mod zoomout;
@@ -146,11 +147,17 @@ pub struct MapParams {
     pub lift_polish: usize,
     /// The orientation-reversing functional map hypothesis ([`orientation`]).
     pub orientation: orientation::OrientationParams,
+    /// Parity variants of each search's strongest map ([`parity`]): the lowest non-constant
+    /// eigenfunctions whose sign a variant may flip (default 6; 0: none).
+    pub parity_flips: usize,
+    /// How many parity variants, the judge's strongest, are read in full and polished
+    /// (default 2; 0: none).
+    pub parity_variants: usize,
 }
 
 impl Default for MapParams {
     fn default() -> Self {
-        MapParams { accept: 0.03, refine: 3, fmap_size: 20, search_vertices: 1000, local_anchors: 16, wks_accept: 0.2, zoomout_fraction: 0.6, zoomout_k: 100, spectral_start: 12, zoomout_step: 5, global_fraction: 0.75, polish: 4, final_polish: 8, final_polish_maps: 2, winner_polish: 8, polish_samples: 192, polish_geodesic: true, curvature_weight: 0.03, curvature_time: 1e-3, proxy_vertices: 6000, lift_polish: 4, orientation: Default::default() }
+        MapParams { accept: 0.03, refine: 3, fmap_size: 20, search_vertices: 1000, local_anchors: 16, wks_accept: 0.2, zoomout_fraction: 0.6, zoomout_k: 100, spectral_start: 12, zoomout_step: 5, global_fraction: 0.75, polish: 4, final_polish: 8, final_polish_maps: 2, winner_polish: 8, polish_samples: 192, polish_geodesic: true, curvature_weight: 0.03, curvature_time: 1e-3, proxy_vertices: 6000, lift_polish: 4, orientation: Default::default(), parity_flips: 6, parity_variants: 2 }
     }
 }
 
