@@ -97,13 +97,15 @@
 //! **Parity variants of the strongest map (beyond the paper; session 44).** Once a search's
 //! maps are polished, its strongest global map gets up to two *parity variants*
 //! ([`crate::maps::parity`]: its functional map with one or two of the lowest even
-//! eigenfunctions made odd, read as a point map), polished like every map. A variant whose
-//! polished map still has the flipped parity is a different map, and it competes with the
-//! search's maps like any refined hypothesis (the version the judge scores higher is kept);
-//! one that went back to the parity it came from is dropped (it is a version of the map it
-//! came from, and would win on smoothness rather than precision). This mends maps that reflect
-//! a part in place instead of swapping it with its mirror image (TOSCA michael18's legs); see
-//! `docs/accuracy.md`, "Session 44".
+//! eigenfunctions made odd, read as a point map), polished like every map, which compete with
+//! the search's maps like any refined hypothesis (a new symmetry, or a version of one kept if
+//! the judge scores it higher). A variant that keeps its flipped parity is a different map:
+//! it mends maps that reflect a part in place instead of swapping it with its mirror image
+//! (TOSCA michael18's legs). Most go back to the parity they came from under the polish, and
+//! are then another version of the strongest map from another start: over shared/data at four
+//! seeds letting those compete too gained 0.2 / 0.3 point over all on top of the 0.3 / 0.3 of
+//! the different maps alone (TOSCA +0.6, KIDS +1.2, FAUST −0.1: the judge's preference for the
+//! smoother of two versions, [`crate::judge`]); see `docs/accuracy.md`, "Session 44".
 //!
 //! **The report's order.** Strongest first, but a partial map (a global map cut short where
 //! it failed) counts `Params::global_preference` (3) times less than a global one, and maps
@@ -1508,14 +1510,12 @@ fn search(shared: &Shared<'_>, params: &Params, seed: u64, timings: &mut Timings
     let mut found = once(found);
     timings.maps_polish = t_stage.elapsed().as_secs_f64() + polish_sampling;
     // Phase 2b (beyond the paper): parity variants of the strongest map (`maps::parity`),
-    // polished like every map; one that kept its parity competes with what was found.
+    // polished like every map, compete with what was found (a new symmetry, or another
+    // version of one, kept if the judge scores it higher).
     if let (Some(geodesics), Some(&strongest)) = (&geodesics, strongest_indices(&found, params, 1).first()) {
         let variants = maps::parity::variants(&ctx, &found[strongest].dense.map, probes, &params.maps, params.max_fixed);
         let polished = crate::parallel::map(&variants, |v: &maps::parity::Variant| maps::geodesic::polish_passes(&ctx, geodesics, &v.dense, &polish_anchors, params.maps.polish, &params.maps).0);
-        for (variant, dense) in variants.iter().zip(polished) {
-            if !maps::parity::keeps_parity(&ctx, &dense.map, &variant.flip) {
-                continue;
-            }
+        for dense in polished {
             let distortion = measure.distortion(&dense.map);
             let verdict = verdict(&dense);
             if distortion > params.max_distortion || verdict.fixed > params.max_fixed {
