@@ -97,6 +97,8 @@ fn set_param(p: &mut Params, kv: &str) -> Result<(), String> {
         "max_fixed_preserving" => p.max_fixed_preserving = f()?,
         "fmap_k" => p.maps.orientation.k = u()?,
         "fmap_descriptors" => p.maps.orientation.descriptors = u()?,
+        "orientation_near" => p.maps.orientation.w_near = f()?,
+        "near_reflections" => p.maps.orientation.near_reflections = u()? != 0,
         _ => return Err(format!("unknown parameter {key}")),
     }
     Ok(())
