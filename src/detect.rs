@@ -1516,7 +1516,7 @@ fn search(shared: &Shared<'_>, params: &Params, seed: u64, timings: &mut Timings
                 return Err(cancelled("polish"));
             }
             let polished = crate::parallel::map(round, |f: &Found| {
-                maps::geodesic::polish_passes(&ctx, geodesics, &f.dense, anchors, params.maps.polish, &params.maps).0
+                maps::geodesic::polish_passes(&ctx, geodesics, &f.dense, anchors, params.maps.polish, &params.maps, Pass::Search).0
             });
             for (f, dense) in round.iter_mut().zip(polished) {
                 let distortion = measure.distortion(&dense.map);
@@ -1551,7 +1551,7 @@ fn search(shared: &Shared<'_>, params: &Params, seed: u64, timings: &mut Timings
         let ops = reversing.get().and_then(|o| o.as_ref()).map(|(ops, _)| ops);
         let wanted = params.maps.orientation.near_reflections || !found[strongest].verdict.reverses();
         variants.extend(ops.filter(|_| wanted).and_then(|ops| maps::orientation::variant(&ctx, ops, map, probes, &params.maps)).map(|dense| (dense, Pass::Settle)));
-        let polished = crate::parallel::map(&variants, |(dense, pass): &(maps::DenseMap, Pass)| maps::geodesic::polish_passes_while(&ctx, geodesics, dense, &polish_anchors, params.maps.polish, &params.maps, *pass, &mut || true).expect("never cancelled").0);
+        let polished = crate::parallel::map(&variants, |(dense, pass): &(maps::DenseMap, Pass)| maps::geodesic::polish_passes(&ctx, geodesics, dense, &polish_anchors, params.maps.polish, &params.maps, *pass).0);
         for (dense, &(_, pass)) in polished.into_iter().zip(&variants) {
             let distortion = measure.distortion(&dense.map);
             let verdict = verdict(&dense);
@@ -1628,7 +1628,7 @@ fn search(shared: &Shared<'_>, params: &Params, seed: u64, timings: &mut Timings
     }
     if let (true, Some(geodesics)) = (params.maps.polish > 0 && params.maps.final_polish > 0, &geodesics) {
         let chosen = strongest_indices(&found, params, params.maps.final_polish_maps);
-        let polished = crate::parallel::map(&chosen, |&i| maps::geodesic::polish_passes_while(&ctx, geodesics, &found[i].dense, &polish_anchors, params.maps.final_polish, &params.maps, found[i].pass, &mut || true).expect("never cancelled").0);
+        let polished = crate::parallel::map(&chosen, |&i| maps::geodesic::polish_passes(&ctx, geodesics, &found[i].dense, &polish_anchors, params.maps.final_polish, &params.maps, found[i].pass).0);
         for (&i, dense) in chosen.iter().zip(polished) {
             if dense.map != found[i].dense.map {
                 replace_map(&mut found[i], dense);

@@ -530,7 +530,8 @@ pub fn polish(ctx: &Context<'_>, geodesics: &Geodesics, m: &DenseMap, samples: &
     try_polish(ctx, geodesics, m, samples, params, Pass::Search).unwrap_or_else(|| m.clone())
 }
 
-/// `passes` passes of [`polish`], and the number of passes run.
+/// `passes` passes of the kind `pass` ([`polish`] for `Pass::Search`), and the number of passes
+/// run.
 ///
 /// A pass is a function of its input's map, images, confidences and globality alone
 /// ([`same_state`]), so once a pass returns the state it was given (a fixed point) or the state
@@ -541,8 +542,8 @@ pub fn polish(ctx: &Context<'_>, geodesics: &Geodesics, m: &DenseMap, samples: &
 /// 45 of 62 reach a fixed point or a cycle, after 1–13 passes; within the four passes every map
 /// gets first, 1 of 231 does. KIDS pose 1's strongest map is a fixed point before its further
 /// passes.
-pub fn polish_passes(ctx: &Context<'_>, geodesics: &Geodesics, m: &DenseMap, samples: &[usize], passes: usize, params: &MapParams) -> (DenseMap, usize) {
-    polish_passes_while(ctx, geodesics, m, samples, passes, params, Pass::Search, &mut || true).expect("never cancelled")
+pub fn polish_passes(ctx: &Context<'_>, geodesics: &Geodesics, m: &DenseMap, samples: &[usize], passes: usize, params: &MapParams, pass: Pass) -> (DenseMap, usize) {
+    polish_passes_while(ctx, geodesics, m, samples, passes, params, pass, &mut || true).expect("never cancelled")
 }
 
 /// [`polish_passes`] of the kind `pass`, asking `keep_going` before each pass run: `None` once
@@ -1118,7 +1119,7 @@ mod tests {
             .collect();
         let truth: Vec<(usize, Vec<usize>)> = (0..n).map(|v| (v, truth_image[v..=v].to_vec())).collect();
         let acc = |m: &DenseMap| crate::eval::accuracy(&c.mesh, &m.map, &truth, &[0.02])[0];
-        let settle = |m: &DenseMap| polish_passes_while(&ctx, &geodesics, m, &samples, 4, &params, Pass::Settle, &mut || true).unwrap().0;
+        let settle = |m: &DenseMap| polish_passes(&ctx, &geodesics, m, &samples, 4, &params, Pass::Settle).0;
         let before = DenseMap::from_image(blurred);
         let after = settle(&before);
         let (before, after) = (acc(&before), acc(&after));
@@ -1144,7 +1145,7 @@ mod tests {
         }
         let mut shortcut = false;
         for (passes, want) in one_by_one.iter().enumerate() {
-            let (m, run) = polish_passes(&ctx, &geodesics, &wrong, &samples, passes, &params);
+            let (m, run) = polish_passes(&ctx, &geodesics, &wrong, &samples, passes, &params, Pass::Search);
             assert!(run <= passes);
             assert!(m.map == want.map && m.image == want.image && m.confidence == want.confidence && m.mismatch == want.mismatch, "{passes} passes");
             assert_eq!((m.global, m.region_size, &m.anchors), (want.global, want.region_size, &want.anchors));

@@ -264,12 +264,18 @@ pub fn fmap_between(src: &Operators, dst: &Operators, reversing: bool, params: &
     (src.k() == dst.k() && src.a.ncols() == dst.a.ncols()).then(|| solve(src, dst, reversing, params, None)).flatten()
 }
 
+/// `Σw`, the sum of the four terms' weights (each weight, and the proximity term's, is
+/// relative to it).
+fn weight_sum(params: &OrientationParams) -> f64 {
+    params.w_descr + params.w_lap + params.w_dcomm + params.w_orient
+}
+
 /// The four terms' weights over their normalisers, `[w_d/τ_d, w_l/τ_l, w_c/τ_c, w_o/τ_o]`
 /// (each weight over the weights' sum); `None` when the weights do not sum to a positive number.
 fn weights(src: &Operators, dst: &Operators, params: &OrientationParams) -> Option<[f64; 4]> {
     let k = src.k();
     let p = src.a.ncols() as f64;
-    let total = params.w_descr + params.w_lap + params.w_dcomm + params.w_orient;
+    let total = weight_sum(params);
     if total.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
         return None;
     }
@@ -354,8 +360,7 @@ fn solve(src: &Operators, dst: &Operators, reversing: bool, params: &Orientation
         }
     }
     if let Some(c0) = near {
-        let total = params.w_descr + params.w_lap + params.w_dcomm + params.w_orient;
-        let w = params.w_near / total / c0.norm_l2().powi(2).max(1e-300);
+        let w = params.w_near / weight_sum(params) / c0.norm_l2().powi(2).max(1e-300);
         for j in 0..k {
             for i in 0..k {
                 h[(j * k + i, j * k + i)] += w;
@@ -467,7 +472,7 @@ mod tests {
     /// does not: `docs/accuracy.md`, "Session 45".)
     #[test]
     fn the_orientation_variant_of_a_half_identity_is_the_mirror() {
-        use crate::maps::geodesic::{polish_passes_while, Geodesics, Pass};
+        use crate::maps::geodesic::{polish_passes, Geodesics, Pass};
         use crate::maps::{test_spectra, Context, DenseMap, MapParams};
         let c = shapes::quadruped(4, shapes::Pose::Walking, 0.0, 0);
         let mesh = &c.mesh;
@@ -485,7 +490,7 @@ mod tests {
         let verdict = |m: &DenseMap| ctx.verdict(&m.map).expect("a judge");
         let ops = operators(mesh, &mesh.oriented_triangles(), &basis, &desc, &params.orientation).expect("operators");
         let start = variant(&ctx, &ops, &half.map, &samples, &params).expect("a variant");
-        let settled = polish_passes_while(&ctx, &Geodesics::new(&ctx), &start, &samples, params.polish, &params, Pass::Settle, &mut || true).expect("never cancelled").0;
+        let settled = polish_passes(&ctx, &Geodesics::new(&ctx), &start, &samples, params.polish, &params, Pass::Settle).0;
         let (before, after) = (verdict(&half), verdict(&start));
         assert!(before.reversal < 0.6 && before.fixed > 0.3, "a half-identity: {before:?}");
         assert!(after.reversal > 0.9 && after.fixed < 0.05, "the variant reverses orientation: {after:?}");

@@ -179,7 +179,7 @@ mod tests {
         let acc = |m: &DenseMap, t: &[(usize, Vec<usize>)]| crate::eval::accuracy(mesh, &m.map, t, &[0.05])[0];
         assert!(acc(&wrong, &on_legs) < 0.2, "the legs start wrong: {}", acc(&wrong, &on_legs));
         let geodesics = Geodesics::new(&ctx);
-        let polish = |m: &DenseMap| polish_passes(&ctx, &geodesics, m, &samples, params.polish, &params).0;
+        let polish = |m: &DenseMap| polish_passes(&ctx, &geodesics, m, &samples, params.polish, &params, crate::maps::geodesic::Pass::Search).0;
         let score = |m: &DenseMap| ctx.verdict(&m.map).expect("a judge").score;
         let kept = polish(&wrong);
         assert!(acc(&kept, &on_legs) < 0.5, "the polish alone keeps most of the legs in place: {}", acc(&kept, &on_legs));
