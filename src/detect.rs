@@ -1384,6 +1384,15 @@ fn search(shared: &Shared<'_>, params: &Params, seed: u64, timings: &mut Timings
     // thin limbs).
     // `reverses`: whether `dense` reverses orientation (its verdict, computed once per map).
     let same_as = |dense: &maps::DenseMap, reverses: bool, found: &[Found], fraction: f64| found.iter().position(|f| f.verdict.reverses() == reverses && agrees(&f.dense, dense, fraction));
+    // A map that passed its checks competes with the symmetries `found`: a version of one of
+    // them (the same orientation type, agreeing on half the samples) replaces it if it is
+    // `better`, anything else is a new symmetry. Whether it is new. Phases 2 and 2b.
+    let compete = |found: &mut Vec<Found>, dense: maps::DenseMap, seed: (usize, usize), distortion: f64, verdict: Verdict, pass: Pass| -> bool {
+        let complexity = measure.complexity(&dense.map);
+        let candidate = Found { dense, part: false, seed, distortion, complexity, verdict, pass };
+        let known = same_as(&candidate.dense, verdict.reverses(), found, 0.5);
+        keep_better(found, known, candidate)
+    };
     let reverses: Vec<bool> = profiled.iter().map(|h| verdict(&h.0).reverses()).collect();
     // Phase 2: refine (nearly) global maps, keep those that move points and preserve distances.
     let total = profiled.len().max(1);
@@ -1475,12 +1484,9 @@ fn search(shared: &Shared<'_>, params: &Params, seed: u64, timings: &mut Timings
         if distortion > params.max_distortion {
             continue;
         }
-        let complexity = measure.complexity(&dense.map);
         let verdict = judged.unwrap_or_else(|| verdict(&dense));
-        let candidate = Found { dense, part: false, seed, distortion, complexity, verdict, pass: Pass::Search };
-        let refined = candidate.dense.refined;
-        let known = same_as(&candidate.dense, verdict.reverses(), &found, 0.5);
-        if keep_better(&mut found, known, candidate) && refined {
+        let refined = dense.refined;
+        if compete(&mut found, dense, seed, distortion, verdict, Pass::Search) && refined {
             fruitless = 0;
         }
     }
@@ -1558,11 +1564,8 @@ fn search(shared: &Shared<'_>, params: &Params, seed: u64, timings: &mut Timings
             if distortion > params.max_distortion || verdict.fixed > params.max_fixed {
                 continue;
             }
-            let complexity = measure.complexity(&dense.map);
             let seed = (probes[0], dense.image[probes[0]]);
-            let candidate = Found { dense, part: false, seed, distortion, complexity, verdict, pass };
-            let known = same_as(&candidate.dense, verdict.reverses(), &found, 0.5);
-            keep_better(&mut found, known, candidate);
+            compete(&mut found, dense, seed, distortion, verdict, pass);
         }
     }
     let t_stage = Instant::now();
