@@ -65,7 +65,7 @@
 //! over shared/data (best / first acc@0.05, all 116 shapes), 1 is worst at seeds 0 and 30
 //! (−0.16 / −0.24 against 0.3), and 0.1 against 0.3 at seeds 0, 10, 20, 30 gives all
 //! 90.95 / 90.89 → 91.02 / 90.96, TOSCA 92.98 → 93.25, FAUST 93.04 → 92.98, SHREC'16
-//! 74.78 / 74.27 → 74.69 / 74.18, KIDS unchanged (`docs/accuracy.md`, "Session 45").
+//! 74.78 / 74.27 → 74.69 / 74.18, KIDS unchanged (`docs/accuracy.md`, "Session 45", "Session 46").
 //! It keeps its settling passes in the search's further polish (`detect`'s `Found::pass`).
 //! Only a strongest map that does not reverse orientation gets the variant
 //! (`near_reflections`): for a reflection it is one more version of the map, which the judge
