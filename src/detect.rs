@@ -117,7 +117,9 @@
 //! (`Found::pass`): the search's further polish and a proxy's lift polish settle this one too.
 //! Over shared/data at seeds 0, 10, 20, 30 (`docs/accuracy.md`, "Session 45"): best / first
 //! acc@0.05 over all 90.76 / 90.62 → 90.95 / 90.89, TOSCA 92.59 / 92.41 → 92.98 / 92.98
-//! (dog10's first 0.38 → 0.57–0.70), FAUST 92.98 → 93.04, no dataset down. Strongest maps that
+//! (dog10's first 0.38 → 0.57–0.70), FAUST 92.98 → 93.04, no dataset down, with a proximity
+//! weight `w_near` of 0.3; with 0.1, its default since session 46, all 91.02 / 90.96, TOSCA
+//! 93.25 / 93.25 (dog10 0.72–0.83), FAUST 92.98 (`maps::orientation`). Strongest maps that
 //! already reverse orientation get no such variant (`OrientationParams::near_reflections`):
 //! there it is one more version of the map, and at seed 0 the judge preferred less precise
 //! versions on SHREC'16 kid13 (0.80 → 0.64) and TOSCA horse7 (0.80 → 0.75) as often as more
