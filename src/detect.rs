@@ -250,7 +250,10 @@ pub struct Params {
     pub patience: usize,
     /// …or after this many refinements in all (default 4).
     pub max_refinements: usize,
-    /// At most this many symmetries are reported (default 32).
+    /// At most this many symmetries of the global stages are reported (default 32), and at
+    /// most as many of the parts stage's (`parts`) besides them: the global stages of a search
+    /// can fill the cap on their own (a noisy directed quadruped at 10k vertices, 32 maps in
+    /// one search), and the parts' maps, ranked after theirs, were then never reported.
     pub max_symmetries: usize,
     /// A symmetry whose judge's score is below this fraction of the strongest one's is not
     /// reported (default 0.1; 0 reports all). Over shared/data at seeds 0–3 (116 shapes × 4,
@@ -853,7 +856,10 @@ fn several(whole: &Mesh, parts: &[Mesh], params: &Params, progress: &mut dyn FnM
     // As `report` ranks them within a component (`rank_score`).
     let rank = |(value, s): &(f64, Symmetry)| rank_score(*value, s.kind == Kind::Global, params);
     ranked.sort_by(|x, y| rank(y).total_cmp(&rank(x)));
-    let mut symmetries: Vec<Symmetry> = ranked.into_iter().map(|(_, s)| s).take(params.max_symmetries).collect();
+    // The components' maps were capped each (`Params::max_symmetries`, the parts stage's
+    // besides the global stages'); so is the mesh's list.
+    let cap = if params.parts.enabled { 2 * params.max_symmetries } else { params.max_symmetries };
+    let mut symmetries: Vec<Symmetry> = ranked.into_iter().map(|(_, s)| s).take(cap).collect();
     group(&mut symmetries, whole.num_vertices(), params.groups);
     let mut timings = Timings::default();
     for r in &results {
@@ -1666,8 +1672,8 @@ fn search(shared: &Shared<'_>, params: &Params, seed: u64, timings: &mut Timings
         });
         let strongest = strongest.flatten().map(|i| &found[i].dense.map[..]);
         let parts = crate::parts::find(g.graph(), ctx.positions, &agd, &globals, strongest, scale, &params.parts);
-        let room = params.max_symmetries.saturating_sub(found.len());
-        for m in parts.into_iter().take(room) {
+        // A budget of their own (`Params::max_symmetries`).
+        for m in parts.into_iter().take(params.max_symmetries) {
             let distortion = measure.distortion(&m.dense.map);
             let complexity = measure.complexity(&m.dense.map);
             let judged = verdict(&m.dense);
@@ -1790,8 +1796,14 @@ fn report(mesh: &Mesh, mesh_judge: &Judge, mut found: Vec<Found>, emb: &crate::d
     // The report's order (see the module docs): partial maps count less, the parts stage's
     // come last.
     found.sort_by(|a, b| report_order(a, b, params));
-    // Pooled searches can together find more than the cap.
-    found.truncate(params.max_symmetries);
+    // Pooled searches can together find more than the cap (one for the global stages' maps,
+    // one for the parts stage's, which come last).
+    let (mut global_stages, mut parts_stage) = (0, 0);
+    found.retain(|f| {
+        let count = if f.part { &mut parts_stage } else { &mut global_stages };
+        *count += 1;
+        *count <= params.max_symmetries
+    });
     if continuous.dimension > 0 {
         // Every map found samples the continuous family or its coset: one of each type.
         let (mut reversing, mut preserving) = (false, false);
