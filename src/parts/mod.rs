@@ -136,6 +136,12 @@
 //! cap, and the stage's 4 maps had no room; they now have a budget of their own
 //! (`Params::max_symmetries`): seed 7 4 → 11 of 12, unseen 10k rows 77 → 84 of 96, no other
 //! row changed.
+//! Measured and dropped: the same choice by alignment for step 6's replacement (a composed
+//! map replaces the direct one when its images lie nearer the better of the two maps' ICP
+//! alignments at the composed map's tips, by `rigid_margin` 0.8 or 1): seeds 1–6 2.5k 82 →
+//! 88–90, 10k 94 → 93–91; seeds 7–12 2.5k 67 → 72–78, 10k 84 → 82–80. The 10k rows lose
+//! right direct maps to composed ones, so it is not kept (with both rules required nothing
+//! changes; with either, as with the new one alone).
 //!
 //! Measured with `examples/quadruped_report.rs` (`SHAPE=directed|spiked|splayed|lopsided|
 //! ellipsoid`; `bench/parts.sh` runs every row): ordered part pairs whose best reported map has
