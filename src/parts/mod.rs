@@ -546,27 +546,21 @@ pub fn find(graph: &EdgeGraph, positions: &[[f64; 3]], agd: &[f64], globals: &[&
             let tolerance = params.profile_tolerance;
             let agree = agreeing_radius(&profiles[i], &profiles[j], step, tolerance, slack);
             let steps = (radius / step).ceil() as usize;
-            let q = if agree >= radius {
-                q
+            // The partner tip and its profile (out to at least `radius`: its first `steps` rings).
+            let moved;
+            let (q, q_profile) = if agree >= radius {
+                (q, &profiles[j])
             } else if profiles[i].iter().zip(&profiles[j]).take(steps).skip(2).all(|(&a, &b)| areas_agree(a, b, tolerance, slack)) {
                 // The profiles differ within `tip_radius` of the tips only: the tips lie on
                 // different features of the same end (the toe of one paw, the pad of the
                 // other). The partner tip moves to the vertex near it whose profile agrees.
-                match partner_tip(graph, positions, &weights, &profiles[i], q, rho, radius, step, tolerance, slack, &mut scratch) {
-                    Some(moved) => moved,
-                    None => continue,
-                }
+                let Some((c, profile)) = partner_tip(graph, positions, &weights, &profiles[i], q, rho, radius, step, tolerance, slack, &mut scratch) else { continue };
+                moved = profile;
+                (c, &moved)
             } else {
                 continue;
             };
             // Repeated parts have the same girth all the way, not only about the same area.
-            let moved;
-            let q_profile = if q == tips[j] {
-                &profiles[j]
-            } else {
-                moved = profile(&ball(graph, q, reach, &mut scratch), &weights, step);
-                &moved
-            };
             if girth_agreement(&profiles[i], q_profile, steps) < 1.0 - params.girth_tolerance {
                 continue;
             }
@@ -776,23 +770,24 @@ const PARTNER_CANDIDATES: usize = 24;
 
 /// The vertex within `rho` of `q` (among [`PARTNER_CANDIDATES`] spread out) whose growth
 /// profile agrees with `target` out to `radius` ([`agreeing_radius`]) and differs least from
-/// it (the sum of relative differences); `None` when none agrees.
+/// it (the sum of relative differences), and its profile out to `radius + step`; `None` when
+/// none agrees.
 #[allow(clippy::too_many_arguments)]
-fn partner_tip(graph: &EdgeGraph, positions: &[[f64; 3]], weights: &[f64], target: &[f64], q: usize, rho: f64, radius: f64, step: f64, tolerance: f64, slack: f64, scratch: &mut [f64]) -> Option<usize> {
+fn partner_tip(graph: &EdgeGraph, positions: &[[f64; 3]], weights: &[f64], target: &[f64], q: usize, rho: f64, radius: f64, step: f64, tolerance: f64, slack: f64, scratch: &mut [f64]) -> Option<(usize, Vec<f64>)> {
     let steps = (radius / step).ceil() as usize;
     let near: Vec<usize> = ball(graph, q, rho, scratch).iter().map(|&(v, _)| v as usize).collect();
-    let mut best: Option<(f64, usize)> = None;
+    let mut best: Option<(f64, usize, Vec<f64>)> = None;
     for c in spread(&near, positions, PARTNER_CANDIDATES) {
         let pc = profile(&ball(graph, c, radius + step, scratch), weights, step);
         if agreeing_radius(target, &pc, step, tolerance, slack) < radius {
             continue;
         }
         let differ: f64 = target.iter().zip(&pc).take(steps).map(|(&a, &b)| (a - b).abs() / a.max(b).max(f64::MIN_POSITIVE)).sum();
-        if best.is_none_or(|(d, _)| differ < d) {
-            best = Some((differ, c));
+        if best.as_ref().is_none_or(|(d, ..)| differ < *d) {
+            best = Some((differ, c, pc));
         }
     }
-    best.map(|(_, c)| c)
+    best.map(|(_, c, pc)| (c, pc))
 }
 
 /// At most `count` of `vertices` spread out by farthest-point sampling (straight-line
