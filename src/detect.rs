@@ -402,6 +402,9 @@ pub struct Symmetry {
     /// same for a symmetry of one component, two for a map between congruent components
     /// (then `map` sends each onto the other).
     pub components: [usize; 2],
+    /// Found by the parts stage (`Params::parts`), which has a cap of its own
+    /// (`Params::max_symmetries`).
+    pub(crate) from_parts: bool,
 }
 
 /// One connected component that was processed.
@@ -856,10 +859,9 @@ fn several(whole: &Mesh, parts: &[Mesh], params: &Params, progress: &mut dyn FnM
     // As `report` ranks them within a component (`rank_score`).
     let rank = |(value, s): &(f64, Symmetry)| rank_score(*value, s.kind == Kind::Global, params);
     ranked.sort_by(|x, y| rank(y).total_cmp(&rank(x)));
-    // The components' maps were capped each (`Params::max_symmetries`, the parts stage's
-    // besides the global stages'); so is the mesh's list.
-    let cap = if params.parts.enabled { 2 * params.max_symmetries } else { params.max_symmetries };
-    let mut symmetries: Vec<Symmetry> = ranked.into_iter().map(|(_, s)| s).take(cap).collect();
+    // The components' maps were capped each; so is the mesh's list.
+    let mut symmetries: Vec<Symmetry> = ranked.into_iter().map(|(_, s)| s).collect();
+    cap_each_stage(&mut symmetries, |s| s.from_parts, params.max_symmetries);
     group(&mut symmetries, whole.num_vertices(), params.groups);
     let mut timings = Timings::default();
     for r in &results {
@@ -973,6 +975,7 @@ fn swap(
         distortion: m.distortion,
         verdict,
         components,
+        from_parts: false,
     }
 }
 
@@ -1162,6 +1165,17 @@ fn better(a: &Found, than: &Found) -> bool {
     } else {
         (a.dense.region_size, -a.distortion) > (than.dense.region_size, -than.distortion)
     }
+}
+
+/// Keeps the first `cap` of `items` the global stages found and the first `cap` the parts
+/// stage found (`from_parts`), in their order (`Params::max_symmetries`).
+fn cap_each_stage<T>(items: &mut Vec<T>, from_parts: impl Fn(&T) -> bool, cap: usize) {
+    let (mut global_stages, mut parts_stage) = (0, 0);
+    items.retain(|item| {
+        let count = if from_parts(item) { &mut parts_stage } else { &mut global_stages };
+        *count += 1;
+        *count <= cap
+    });
 }
 
 /// Whether the report keeps `f` (judged on the mesh): a map of the parts stage, or one whose
@@ -1796,14 +1810,8 @@ fn report(mesh: &Mesh, mesh_judge: &Judge, mut found: Vec<Found>, emb: &crate::d
     // The report's order (see the module docs): partial maps count less, the parts stage's
     // come last.
     found.sort_by(|a, b| report_order(a, b, params));
-    // Pooled searches can together find more than the cap (one for the global stages' maps,
-    // one for the parts stage's, which come last).
-    let (mut global_stages, mut parts_stage) = (0, 0);
-    found.retain(|f| {
-        let count = if f.part { &mut parts_stage } else { &mut global_stages };
-        *count += 1;
-        *count <= params.max_symmetries
-    });
+    // Pooled searches can together find more than the cap.
+    cap_each_stage(&mut found, |f| f.part, params.max_symmetries);
     if continuous.dimension > 0 {
         // Every map found samples the continuous family or its coset: one of each type.
         let (mut reversing, mut preserving) = (false, false);
@@ -1837,6 +1845,7 @@ fn report(mesh: &Mesh, mesh_judge: &Judge, mut found: Vec<Found>, emb: &crate::d
                 distortion: f.distortion,
                 verdict: f.verdict,
                 components: [0, 0],
+                from_parts: f.part,
             }
         })
         .collect();
