@@ -19,8 +19,8 @@
 //! nearly touch (a foot against the other foot), collapsing the vertex at the bottom of the
 //! fold joins the two sheets with an edge whose chord is far shorter than the way along the
 //! surface, and the quadric error barely sees it; the coarse mesh's geodesics and Laplacian
-//! then take the fold for a bridge. On the 60k KIDS poses such edges (chord under 0.6 of the
-//! fine geodesic) are 0.9% of all but 6–8% where the lifted maps fail
+//! then take the fold for a bridge. On the 60k KIDS pose 4 such edges (chord under 0.6 of the
+//! fine geodesic) are 0.9% of all, but 6–8% where its lifted maps fail
 //! (`bench/coarse_shortcuts.py`). Refusing the collapses that create them (a test on the
 //! normals, or on the chord against the length across the collapsed vertex's fan) made the
 //! right maps more precise but moved the failures about and broke the noisy scans:
