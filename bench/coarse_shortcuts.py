@@ -18,24 +18,10 @@ import os
 import sys
 
 import numpy as np
-from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import dijkstra
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from hierarchy import read_off  # noqa: E402
-
-
-def edges(f):
-    """Each undirected edge of the triangles `f` once, as sorted pairs."""
-    e = np.sort(np.concatenate([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]]), axis=1)
-    return np.unique(e, axis=0)
-
-
-def graph(v, f):
-    e = edges(f)
-    w = np.linalg.norm(v[e[:, 0]] - v[e[:, 1]], axis=1)
-    n = len(v)
-    return coo_matrix((np.r_[w, w], (np.r_[e[:, 0], e[:, 1]], np.r_[e[:, 1], e[:, 0]])), shape=(n, n)).tocsr()
+from hierarchy import edge_graph, edges, read_off  # noqa: E402
 
 
 def describe(name, r):
@@ -64,7 +50,7 @@ def main():
     # Geodesics from each coarse vertex, far enough for its longest edge (the zigzag and
     # folds make them longer than the chord; beyond the limit the ratio counts as 0).
     limit = 6.0 * chord.max()
-    d = dijkstra(graph(v, f), indices=kept, limit=limit)
+    d = dijkstra(edge_graph(v, f), directed=False, indices=kept, limit=limit)
     geo = d[ec[:, 0], ends[:, 1]]
     r = np.where(np.isfinite(geo), chord / np.maximum(geo, 1e-300), 0.0)
     describe("all", r)

@@ -55,6 +55,20 @@ def area(v, f):
     return 0.5 * np.linalg.norm(np.cross(b - a, c - a), axis=1).sum()
 
 
+def edges(f):
+    """Each undirected edge of the triangles `f` once, as sorted pairs."""
+    e = np.concatenate([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]])
+    return np.unique(np.sort(e, axis=1), axis=0)
+
+
+def edge_graph(v, f):
+    """The edge graph, each edge once (a constructor that sums duplicates would double
+    interior edges); one direction only, for `dijkstra(..., directed=False)`."""
+    e = edges(f)
+    w = np.linalg.norm(v[e[:, 0]] - v[e[:, 1]], axis=1)
+    return sp.coo_matrix((w, (e[:, 0], e[:, 1])), shape=(len(v), len(v))).tocsr()
+
+
 def shapes_with_truth(data, datasets, out):
     """(dataset, NAME.off path, NAME.sym.txt path) of every shape with ground truth under
     DATA/DATASET, sorted, each dataset's folder made under OUT first (for the copy scripts)."""

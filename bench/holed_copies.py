@@ -28,19 +28,10 @@ import os
 import sys
 
 import numpy as np
-import scipy.sparse as sp
 from scipy.sparse.csgraph import dijkstra
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from hierarchy import area, read_off, shapes_with_truth, write_off  # noqa: E402
-
-
-def edge_graph(v, faces):
-    """Each edge once (a constructor that sums duplicates would double interior edges)."""
-    e = np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]])
-    e = np.unique(np.sort(e, axis=1), axis=0)
-    w = np.linalg.norm(v[e[:, 0]] - v[e[:, 1]], axis=1)
-    return sp.coo_matrix((w, (e[:, 0], e[:, 1])), shape=(len(v), len(v))).tocsr()
+from hierarchy import area, edge_graph, read_off, shapes_with_truth, write_off  # noqa: E402
 
 
 def main():
