@@ -8,7 +8,7 @@
 use std::io::Write;
 
 use intrinsym::hierarchy::simplify::simplify;
-use intrinsym::mesh::read_mesh;
+use intrinsym::mesh::{read_mesh, write_off};
 use intrinsym::{Mesh, MeshParams};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -27,19 +27,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let n = unit.num_vertices();
     let s = simplify(&unit, target);
     let original: Vec<usize> = s.kept.iter().map(|&v| unit.input_index[v] as usize).collect();
-    let mut off = std::io::BufWriter::new(std::fs::File::create(format!("{out}.off"))?);
-    writeln!(off, "OFF\n{} {} 0", original.len(), s.triangles.len())?;
-    for &v in &original {
-        let [x, y, z] = input[v];
-        writeln!(off, "{x} {y} {z}")?;
-    }
-    for t in &s.triangles {
-        writeln!(off, "3 {} {} {}", t[0], t[1], t[2])?;
-    }
+    let positions: Vec<[f64; 3]> = original.iter().map(|&v| input[v]).collect();
+    write_off(format!("{out}.off"), &positions, &s.triangles)?;
     let mut kept = std::io::BufWriter::new(std::fs::File::create(format!("{out}.kept.txt"))?);
     for &v in &original {
         writeln!(kept, "{v}")?;
     }
+    kept.flush()?;
     println!("{n} vertices -> {} ({} triangles): {out}.off, {out}.kept.txt", original.len(), s.triangles.len());
     Ok(())
 }
