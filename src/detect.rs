@@ -720,7 +720,8 @@ fn detect_surface(mesh: Mesh, params: &Params, raw: Option<Vec<f64>>, progress: 
     // point for ×1.07–1.18 the time on the 60k KIDS poses).
     let mut coarse_params = params.clone();
     coarse_params.maps.winner_polish = 0;
-    let (mut det, spectral) = pipeline(&coarse, &coarse_params, Some(&cell_mass), curvature.as_ref(), &mut |f| progress(0.1 + 0.8 * f))?;
+    let measured = Measured { mass: &cell_mass, stretch: &h.stretch };
+    let (mut det, spectral) = pipeline(&coarse, &coarse_params, Some(measured), curvature.as_ref(), &mut |f| progress(0.1 + 0.8 * f))?;
     let t = Instant::now();
     let m = coarse.num_vertices();
     // The coarse detection's indices are the coarse mesh's inputs; its vertex c is input
@@ -979,19 +980,30 @@ fn swap(
     }
 }
 
-/// [`detect`] on the current thread, on one connected mesh. `mass` and `curvature`: the
-/// vertex masses of the eigenbasis and the raw mean curvature of its vertices when known from
-/// a finer mesh ([`crate::hierarchy::Hierarchy::cell_mass`],
-/// [`crate::descriptors::curvature::Raw::on_cells`]); `None` computes them on `mesh`
-/// (its lumped mass; the curvature estimated on it).
-fn pipeline(mesh: &Mesh, params: &Params, mass: Option<&[f64]>, curvature: Option<&Raw>, progress: &mut dyn FnMut(f64) -> bool) -> Result<(Detection, Spectral), Error> {
+/// What a hierarchy's coarse mesh knows of itself from its fine mesh ([`crate::hierarchy`],
+/// step 3): its vertices' masses (their cells' areas) and its edges' stretch along the fine
+/// surface.
+#[derive(Clone, Copy)]
+struct Measured<'a> {
+    /// [`crate::hierarchy::Hierarchy::cell_mass`], in the mesh's units.
+    mass: &'a [f64],
+    /// [`crate::hierarchy::Hierarchy::stretch`], per entry of the mesh's CSR adjacency.
+    stretch: &'a [f64],
+}
+
+/// [`detect`] on the current thread, on one connected mesh. `measured` and `curvature`: the
+/// eigenbasis's vertex masses and edge stretch and the raw mean curvature of the vertices
+/// when known from a finer mesh ([`Measured`], [`crate::descriptors::curvature::Raw::on_cells`]);
+/// `None` computes them on `mesh` (its lumped mass and chords; the curvature estimated on it).
+fn pipeline(mesh: &Mesh, params: &Params, measured: Option<Measured<'_>>, curvature: Option<&Raw>, progress: &mut dyn FnMut(f64) -> bool) -> Result<(Detection, Spectral), Error> {
     let t_all = Instant::now();
     let mut timings = Timings::default();
     let cancelled = |stage: &'static str| Error::Cancelled { stage };
     let n = mesh.num_vertices();
 
     let t = Instant::now();
-    let basis_owned = Eigenbasis::compute_with_mass(mesh, mass, &params.eigen_for(n), &mut |f| progress(0.6 * f))?;
+    let (mass, stretch) = (measured.map(|m| m.mass), measured.map(|m| m.stretch));
+    let basis_owned = Eigenbasis::compute_with_mass(mesh, mass, stretch, &params.eigen_for(n), &mut |f| progress(0.6 * f))?;
     let basis = &basis_owned;
     timings.spectral = t.elapsed().as_secs_f64();
 
@@ -1016,8 +1028,8 @@ fn pipeline(mesh: &Mesh, params: &Params, mass: Option<&[f64]>, curvature: Optio
     let mesh_judge = plain_judge.clone().with_curvature(mesh_curvature.clone());
     let reversing = std::sync::OnceLock::new();
     // The mesh's edge graph: the polish's anchors and a proxy's seeds are sampled on it.
-    let graph = maps::geodesic::EdgeGraph::new(&mesh.vertices, adjacency.clone());
-    let shared = Shared { mesh, basis, desc: &desc, emb, oriented: &oriented, normals: &normals, curvature: &mesh_curvature, scale, adjacency: &adjacency, graph: &graph, judge: &plain_judge, reversing: &reversing };
+    let graph = maps::geodesic::EdgeGraph::stretched(&mesh.vertices, adjacency.clone(), stretch);
+    let shared = Shared { mesh, basis, desc: &desc, emb, oriented: &oriented, normals: &normals, curvature: &mesh_curvature, scale, adjacency: &adjacency, stretch, graph: &graph, judge: &plain_judge, reversing: &reversing };
     // Searches from different first samples until one finds a symmetry the judge trusts
     // (`Params::restarts`); their symmetries are pooled.
     let mut found: Vec<Found> = Vec::new();
@@ -1243,6 +1255,8 @@ struct Shared<'a> {
     scale: f64,
     /// The mesh's CSR adjacency.
     adjacency: &'a (Vec<usize>, Vec<u32>),
+    /// Its edges' stretch along a finer mesh ([`Measured::stretch`]), if measured.
+    stretch: Option<&'a [f64]>,
     /// The mesh's edge graph (geodesic farthest points: the polish's anchors, a proxy's seeds).
     graph: &'a maps::geodesic::EdgeGraph,
     /// The judge on the mesh, without curvature (the maps stage's when it works on the mesh).
@@ -1755,6 +1769,7 @@ impl Measure<'_> {
 fn mesh_context<'a>(shared: &Shared<'a>, probes: &[usize], diameter: f64, params: &Params) -> Context<'a> {
     let mut ctx = Context::on_graph(&shared.mesh.vertices, shared.adjacency.clone(), shared.emb, shared.desc, diameter, &params.maps);
     ctx.basis = Some(shared.basis);
+    ctx.stretch = shared.stretch;
     ctx.curvature = shared.curvature.clone();
     ctx.judge = Some((shared.judge.clone(), probes.to_vec(), params.max_distortion));
     ctx

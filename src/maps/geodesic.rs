@@ -134,6 +134,13 @@ impl EdgeGraph {
     /// The graph of vertices at `positions` with CSR `adjacency` ([`crate::Mesh::adjacency`]);
     /// an edge is as long as the straight line between its ends.
     pub fn new(positions: &[[f64; 3]], adjacency: (Vec<usize>, Vec<u32>)) -> Self {
+        Self::stretched(positions, adjacency, None)
+    }
+
+    /// [`EdgeGraph::new`] with each edge's straight length multiplied by `stretch` (one factor
+    /// per entry of the CSR `adjacency`, the same for both directions of an edge): a coarse
+    /// mesh's edges as long as the way along its fine mesh ([`crate::hierarchy`], step 3).
+    pub fn stretched(positions: &[[f64; 3]], adjacency: (Vec<usize>, Vec<u32>), stretch: Option<&[f64]>) -> Self {
         let (off, nbr) = adjacency;
         let p = positions;
         let mut len = Vec::with_capacity(nbr.len());
@@ -142,6 +149,10 @@ impl EdgeGraph {
                 let q = p[u as usize];
                 len.push(dist2(p[v], q).sqrt());
             }
+        }
+        if let Some(stretch) = stretch {
+            debug_assert_eq!(stretch.len(), len.len(), "one factor per edge entry");
+            len.iter_mut().zip(stretch).for_each(|(l, f)| *l *= f);
         }
         let (min, max) = len.iter().fold((f64::INFINITY, 0.0f64), |(a, b), &l| (a.min(l), b.max(l)));
         // Buckets narrower than the shortest edge (with a margin for rounding), enough of them
@@ -401,7 +412,7 @@ type Columns = Vec<Arc<Vec<f64>>>;
 impl Geodesics {
     /// An empty cache on `ctx`'s mesh.
     pub fn new(ctx: &Context<'_>) -> Self {
-        Geodesics { graph: EdgeGraph::new(ctx.positions, ctx.adjacency.clone()), columns: Default::default() }
+        Geodesics { graph: EdgeGraph::stretched(ctx.positions, ctx.adjacency.clone(), ctx.stretch), columns: Default::default() }
     }
 
     /// Searches from `sources` now (on all cores), for every later use of them.

@@ -208,6 +208,10 @@ pub struct Context<'a> {
     pub emb: &'a BiharmonicEmbedding,
     /// CSR adjacency.
     pub adjacency: (Vec<usize>, Vec<u32>),
+    /// Per entry of `adjacency`, how much longer the edge is along the surface than its
+    /// chord (a hierarchy's coarse mesh: [`crate::hierarchy::Hierarchy::stretch`]); `None`:
+    /// edges as long as their chords. The polish's geodesics run on these lengths.
+    pub stretch: Option<&'a [f64]>,
     /// Biharmonic diameter.
     pub diameter: f64,
     /// Strided vertex subset for coarse searches.
@@ -250,7 +254,7 @@ impl<'a> Context<'a> {
     ) -> Self {
         let energies = wks.ncols();
         let rows = row_major(wks.as_ref(), energies);
-        Context { positions, emb, adjacency, diameter, search: search_subset(positions.len(), params), wks: rows, energies, basis: None, judge: None, curvature: None, zoom: Default::default(), samples: Default::default(), zoom_size: params.zoomout_k }
+        Context { positions, emb, adjacency, stretch: None, diameter, search: search_subset(positions.len(), params), wks: rows, energies, basis: None, judge: None, curvature: None, zoom: Default::default(), samples: Default::default(), zoom_size: params.zoomout_k }
     }
 
     /// `μ |h_s(v) − h_s(w)|`, the polish's curvature term for `v ↦ w` (0 without curvature).

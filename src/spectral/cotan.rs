@@ -47,6 +47,33 @@ pub fn mollified_edge_lengths(mesh: &Mesh) -> Vec<[f64; 3]> {
     lengths
 }
 
+/// `(m, 3)` edge lengths per triangle as [`mollified_edge_lengths`], each chord multiplied by
+/// its edge's factor in `stretch` (one per entry of the CSR `adjacency` of `mesh`,
+/// [`Mesh::adjacency`]): the intrinsic lengths of a coarse mesh measured along its fine mesh
+/// ([`crate::hierarchy`], step 3). A stretched edge can break its triangle's inequality, so
+/// the mollification is per triangle here: a triangle's three lengths grow by the least `ε`
+/// that restores it with the margin `δ` (Sharp & Crane's local variant), the others keep
+/// theirs.
+pub fn stretched_edge_lengths(mesh: &Mesh, adjacency: &(Vec<usize>, Vec<u32>), stretch: &[f64]) -> Vec<[f64; 3]> {
+    let (off, nbr) = adjacency;
+    let factor = |a: u32, b: u32| {
+        let row = &nbr[off[a as usize]..off[a as usize + 1]];
+        row.binary_search(&b).map_or(1.0, |i| stretch[off[a as usize] + i])
+    };
+    let v = &mesh.vertices;
+    let dist = |a: u32, b: u32| crate::mesh::vec3::dist2(v[a as usize], v[b as usize]).sqrt() * factor(a, b);
+    let mut lengths: Vec<[f64; 3]> = mesh.triangles.iter().map(|t| [dist(t[1], t[2]), dist(t[2], t[0]), dist(t[0], t[1])]).collect();
+    let mean = lengths.iter().flatten().sum::<f64>() / (3 * lengths.len()).max(1) as f64;
+    let delta = MOLLIFY_REL * mean;
+    for l in &mut lengths {
+        let eps = (0..3).map(|k| delta - (l[(k + 1) % 3] + l[(k + 2) % 3] - l[k])).fold(0.0f64, f64::max);
+        if eps > 0.0 {
+            l.iter_mut().for_each(|x| *x += eps);
+        }
+    }
+    lengths
+}
+
 /// Area of a triangle with side lengths `l` (Heron, in the numerically stable ordering).
 pub fn heron_area(l: &[f64; 3]) -> f64 {
     let mut s = *l;

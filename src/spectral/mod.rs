@@ -106,15 +106,19 @@ impl Eigenbasis {
         params: &EigenParams,
         progress: &mut dyn FnMut(f64) -> bool,
     ) -> Result<Eigenbasis, SpectralError> {
-        Self::compute_with_mass(mesh, None, params, progress)
+        Self::compute_with_mass(mesh, None, None, params, progress)
     }
 
     /// As [`Eigenbasis::compute_with_progress`], with the vertex masses `mass` (in the mesh's
     /// units, `(n,)`, positive) in place of the lumped mass when given: a coarse mesh's cells
-    /// measured on its fine mesh ([`crate::hierarchy::Hierarchy::cell_mass`]).
+    /// measured on its fine mesh ([`crate::hierarchy::Hierarchy::cell_mass`]); and with the
+    /// edges' lengths of the stiffness stretched by `stretch` when given (one factor per entry
+    /// of [`Mesh::adjacency`], [`crate::hierarchy::Hierarchy::stretch`],
+    /// [`cotan::stretched_edge_lengths`]).
     pub(crate) fn compute_with_mass(
         mesh: &Mesh,
         mass: Option<&[f64]>,
+        stretch: Option<&[f64]>,
         params: &EigenParams,
         progress: &mut dyn FnMut(f64) -> bool,
     ) -> Result<Eigenbasis, SpectralError> {
@@ -125,7 +129,10 @@ impl Eigenbasis {
         // Laplacian does not depend on scale. A mesh in millimetres or in kilometres gets the
         // same basis up to these factors (issue 16, item 1).
         let (unit, s) = mesh.normalized();
-        let lengths = cotan::mollified_edge_lengths(&unit);
+        let lengths = match stretch {
+            Some(stretch) => cotan::stretched_edge_lengths(&unit, &unit.adjacency(), stretch),
+            None => cotan::mollified_edge_lengths(&unit),
+        };
         let laplacian = cotan::cotan_laplacian(&unit, &lengths);
         let unit_mass = match mass {
             Some(given) => {
