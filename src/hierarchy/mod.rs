@@ -54,10 +54,11 @@
 //!    (seeds 0–30), TOSCA's shapes subdivided to 20k on a 4,000-vertex coarse mesh
 //!    87.66 → 92.57% (34 shapes up, 3 down), FAUST's 90.28 → 90.91%, the SHREC'16 kids
 //!    subdivided (34–48k) 69.60 / 63.27 → 70.67 / 69.27% (best / first). The graph distance
-//!    is a rough geodesic on anisotropic meshes: on the generated quadruped (whose legs are a
-//!    sphere's triangles stretched) a tenth of the coarse edges get a stretch above 1.2
-//!    without any fold. Computing it: one truncated search per coarse vertex on the fine
-//!    graph, stopped once its neighbours are settled or 8 longest edges away.
+//!    is a rough geodesic: on the generated quadruped at rest a tenth of the coarse edges get
+//!    a stretch above 1.2 without any fold, mostly the graph's zigzag (the fine path shortened
+//!    by chords of half the coarse edge's length brings that tenth to 1.13). Computing it:
+//!    one truncated search per coarse vertex on the fine graph, stopped once its neighbours
+//!    are settled or 8 longest edges away.
 //! 4. **Lift** ([`crate::maps::proxy`]'s local trilateration): a fine vertex is placed relative
 //!    to the images of its cell's coarse vertex and that vertex's coarse neighbours, preserving
 //!    its straight distances to them, by greedy descent on the fine mesh.
@@ -389,10 +390,10 @@ mod tests {
     }
 
     /// Every edge of a real coarse mesh gets a factor of at least 1, the same from both ends;
-    /// on a smooth animal without contacts most edges keep their chords. Not all: the fine
-    /// edge graph's paths zigzag more than [`GRAPH_TO_GEODESIC`] allows for across the
-    /// generated shape's long thin triangles (its legs are a sphere's triangles stretched), so
-    /// a tenth of the edges get up to 1.25 and the longest about 2.2 (module docs, step 3).
+    /// on a smooth animal without contacts most edges keep their chords. Not all: a tenth get
+    /// 1.05–1.25, mostly the fine edge graph's zigzag beyond what [`GRAPH_TO_GEODESIC`] allows
+    /// for, and the top percent 1.5–2.4, where the surface between the edge's ends bends away
+    /// from the chord (module docs, step 3).
     #[test]
     fn a_smooth_shapes_coarse_edges_keep_their_chords() {
         let c = shapes::quadruped(5, Pose::Rest, 0.0, 0);
