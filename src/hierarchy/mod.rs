@@ -18,8 +18,8 @@
 //!    mesh's cell of coarse vertex `c` ([`Hierarchy::cell_mass`]; the proxy of
 //!    [`crate::maps::proxy`] weighs its seeds the same way), not the coarse mesh's lumped mass
 //!    (a third of the area of its triangles around `c`); the stiffness `L_c` and the edge
-//!    graph take the edges' lengths along the fine mesh (below). The simplification leaves triangles of very different shapes
-//!    side by side, and their lumped mass is a poor quadrature of the surface: on the 60k KIDS
+//!    graph take the edges' lengths along the fine mesh (below). The simplification leaves
+//!    triangles of very different shapes side by side, and their lumped mass is a poor quadrature of the surface: on the 60k KIDS
 //!    poses the ratio of cell area to lumped mass spreads from 0.44 to 3.7 (1st and 99th
 //!    percentiles; coefficient of variation of the masses 0.48 lumped, 0.35 cells), and every
 //!    `⟨f, g⟩_M` of the pipeline — the M-orthonormality of the basis, the functional maps
@@ -58,10 +58,10 @@
 //!    the gain (KIDS 95.28% over nine of the seeds, where the full stretch has 96.28 and the
 //!    chords 95.78; noisy copies 89.46%): the mild stretch of a third of the edges, which
 //!    makes the coarse graph's distances follow the fine graph's, matters as much (why is
-//!    not measured). Nor is it a better discretisation of the
-//!    surface's spectrum: a coarse mesh's eigenvalues sit further from a congruent mesh's with
-//!    it (5.9% against 1.9% on two shoes), so the congruence of components compares a coarse
-//!    mesh through an eigenbasis with chord lengths (`crate::detect`). The graph distance
+//!    not measured). Nor is it a better discretisation of the surface's spectrum: a coarse
+//!    mesh's eigenvalues sit further from a congruent mesh's with it (5.9% against 1.9% on
+//!    two shoes), so the congruence of components compares a coarse mesh through an
+//!    eigenbasis with chord lengths (`crate::detect`). The graph distance
 //!    is a rough geodesic: on the generated quadruped at rest a tenth of the coarse edges get
 //!    a stretch above 1.2 without any fold, mostly the graph's zigzag (the fine path shortened
 //!    by chords of half the coarse edge's length brings that tenth to 1.13). Computing it:
@@ -73,8 +73,8 @@
 //! 5. **Judge** ([`crate::judge`]) of the lifted maps on the fine mesh (its 600 stencils), which
 //!    ranks them as a mesh's own maps are ranked.
 //!
-//! What is computed at full resolution: only the cells, the edges' stretch, the lumped mass (summed into the cell
-//! masses; also the judge's band trace), the lift (O(n log n) and O(n)), the
+//! What is computed at full resolution: only the cells, the edges' stretch, the lumped mass
+//! (summed into the cell masses; also the judge's band trace), the lift (O(n log n) and O(n)), the
 //! judge's stencils, the mean curvature of the polish's curvature term (one pass over the
 //! triangles, averaged over each cell and over two halves of each cell, whose disagreement
 //! tells a noisy scan: [`crate::descriptors::curvature`]) and the outputs
