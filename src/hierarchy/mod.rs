@@ -12,61 +12,58 @@
 //! 2. **Cells**: every fine vertex belongs to its geodesically nearest coarse vertex (one
 //!    multi-source Dijkstra on the fine edge graph).
 //! 3. **Detection** on the coarse mesh: the whole pipeline — eigenbasis, descriptors, sampling,
-//!    voting, hypotheses, refinement, judge — as on any mesh of `m` vertices, except its
-//!    metric, measured on the fine mesh. The mass matrix of its eigenproblem
-//!    `L_c φ = λ M φ` is `M = diag(A_c)`, `A_c` the area of the fine
-//!    mesh's cell of coarse vertex `c` ([`Hierarchy::cell_mass`]; the proxy of
-//!    [`crate::maps::proxy`] weighs its seeds the same way), not the coarse mesh's lumped mass
-//!    (a third of the area of its triangles around `c`); the stiffness `L_c` and the edge
-//!    graph take the edges' lengths along the fine mesh (below). The simplification leaves
-//!    triangles of very different shapes side by side, and their lumped mass is a poor quadrature of the surface: on the 60k KIDS
-//!    poses the ratio of cell area to lumped mass spreads from 0.44 to 3.7 (1st and 99th
-//!    percentiles; coefficient of variation of the masses 0.48 lumped, 0.35 cells), and every
-//!    `⟨f, g⟩_M` of the pipeline — the M-orthonormality of the basis, the functional maps
-//!    `C = Φᵀ M Φ[T]`, the band-limited curvature — weighs the surface unevenly. Measured
-//!    (best / first acc@0.05, mean over seeds 0–3, 10, 20; docs/hierarchy-benchmark.md,
-//!    "Session 28"): the 60k KIDS poses 93.3 / 93.3% → 95.2 / 95.2% (full resolution:
-//!    94.8%), scan-like copies of the SHREC'16 kids (34–48k) 65.1 / 57.7% → 66.2 / 58.5%.
-//!    A Galerkin operator (`PᵀLP` and `PᵀMP` with a smoothed-aggregation prolongation of the
-//!    cells) was far worse: eigenvalues 1.4–3 times the fine mesh's.
+//!    voting, hypotheses, refinement, judge — as on any mesh of `m` vertices, except its metric,
+//!    measured on the fine mesh. The mass matrix of its eigenproblem `L_c φ = λ M φ` is `M =
+//!    diag(A_c)`, `A_c` the area of the fine mesh's cell of coarse vertex `c`
+//!    ([`Hierarchy::cell_mass`]; the proxy of [`crate::maps::proxy`] weighs its seeds the same
+//!    way), not the coarse mesh's lumped mass (a third of the area of its triangles around `c`);
+//!    the stiffness `L_c` and the edge graph take the edges' lengths along the fine mesh (below).
+//!    The simplification leaves triangles of very different shapes side by side, and their lumped
+//!    mass is a poor quadrature of the surface: on the 60k KIDS poses the ratio of cell area to
+//!    lumped mass spreads from 0.44 to 3.7 (1st and 99th percentiles; coefficient of variation of
+//!    the masses 0.48 lumped, 0.35 cells), and every `⟨f, g⟩_M` of the pipeline — the
+//!    M-orthonormality of the basis, the functional maps `C = Φᵀ M Φ[T]`, the band-limited
+//!    curvature — weighs the surface unevenly. Measured (best / first acc@0.05, mean over seeds
+//!    0–3, 10, 20; docs/hierarchy-benchmark.md, "Session 28"): the 60k KIDS poses 93.3 / 93.3% →
+//!    95.2 / 95.2% (full resolution: 94.8%), scan-like copies of the SHREC'16 kids (34–48k) 65.1 /
+//!    57.7% → 66.2 / 58.5%. A Galerkin operator (`PᵀLP` and `PᵀMP` with a smoothed-aggregation
+//!    prolongation of the cells) was far worse: eigenvalues 1.4–3 times the fine mesh's.
 //!
-//!    **Edge lengths measured along the fine surface** (beyond the paper; session 50). Where
-//!    the surface folds onto itself or two parts nearly touch (a foot against the other foot,
-//!    the crease of a bent knee), the simplification joins the two sheets with a short edge
-//!    that its quadric error barely sees, and the coarse mesh's geodesics, Laplacian and maps
-//!    take the fold for a bridge (on the 60k KIDS poses a coarse edge whose chord is under 0.6
-//!    of the way between its ends along the fine mesh is 6–9 times as frequent where the
-//!    lifted maps failed; session 49). Refusing those collapses broke the noisy scans (their
-//!    crumpled fans look like folds). So the coarse mesh keeps its triangles and its vertices,
-//!    but its *metric* is measured on the fine mesh: each coarse edge `(c, d)` gets the length
-//!    `|x_c − x_d| · s_cd` with the stretch `s_cd = max(1, 0.9·g_cd / |x_c − x_d|)`, `g_cd` the
-//!    fine edge graph's distance between the two ends ([`Hierarchy::stretch`]; 0.9 because a
-//!    path along edges zigzags, by 5–8% on average, up to 2/√3 on a regular triangulation, so
-//!    only a way clearly longer than the straight line counts). The stiffness `L_c` is the
-//!    cotangent Laplacian of these lengths (Heron's areas and the cotangents from lengths
-//!    alone, an intrinsic metric on the coarse triangles, as in intrinsic triangulations,
-//!    Sharp, Soliman & Crane 2019; per-triangle mollification where a stretched edge breaks a
-//!    triangle's inequality), and the coarse edge graph of the polish's geodesics and anchors
-//!    has them as its edges' lengths: an edge across a fold couples its ends as weakly as the
-//!    way around does. Measured against the chords (best acc@0.05; docs/hierarchy-benchmark.md,
-//!    "Session 50"): the 60k KIDS poses 95.68 → 96.17% over 12 seeds (pose results at full
-//!    resolution's precision, ≥ 0.997: 0 → 10 of 60), their noisy copies 92.51 → 94.33%
-//!    (seeds 0–30), TOSCA's shapes subdivided to 20k on a 4,000-vertex coarse mesh
-//!    87.66 → 92.57% (34 shapes up, 3 down), FAUST's 90.28 → 90.91%, the SHREC'16 kids
-//!    subdivided (34–48k) 69.60 / 63.27 → 70.67 / 69.27% (best / first). The folds are not
-//!    all of it: stretching only the edges whose factor is at least 2 (0.3–1% of them) lost
-//!    the gain (KIDS 95.28% over nine of the seeds, where the full stretch has 96.28 and the
-//!    chords 95.78; noisy copies 89.46%): the mild stretch of a third of the edges, which
-//!    makes the coarse graph's distances follow the fine graph's, matters as much (why is
-//!    not measured). Nor is it a better discretisation of the surface's spectrum: a coarse
-//!    mesh's eigenvalues sit further from a congruent mesh's with it (5.9% against 1.9% on
-//!    two shoes), so the congruence of components compares a coarse mesh through an
-//!    eigenbasis with chord lengths (`crate::detect`). The graph distance
-//!    is a rough geodesic: on the generated quadruped at rest a tenth of the coarse edges get
-//!    a stretch above 1.2 without any fold, mostly the graph's zigzag (the fine path shortened
-//!    by chords of half the coarse edge's length brings that tenth to 1.13). Computing it:
-//!    one truncated search per coarse vertex on the fine graph, stopped once its neighbours
-//!    are settled or 8 longest edges away.
+//!    **Edge lengths measured along the fine surface** (beyond the paper; session 50). Where the
+//!    surface folds onto itself or two parts nearly touch (a foot against the other foot, the
+//!    crease of a bent knee), the simplification joins the two sheets with a short edge that its
+//!    quadric error barely sees, and the coarse mesh's geodesics, Laplacian and maps take the fold
+//!    for a bridge (on the 60k KIDS poses a coarse edge whose chord is under 0.6 of the way between
+//!    its ends along the fine mesh is 6–9 times as frequent where the lifted maps failed; session
+//!    49). Refusing those collapses broke the noisy scans (their crumpled fans look like folds). So
+//!    the coarse mesh keeps its triangles and its vertices, but its *metric* is measured on the
+//!    fine mesh: each coarse edge `(c, d)` gets the length `|x_c − x_d| · s_cd` with the stretch
+//!    `s_cd = max(1, 0.9·g_cd / |x_c − x_d|)`, `g_cd` the fine edge graph's distance between the
+//!    two ends ([`Hierarchy::stretch`]; 0.9 because a path along edges zigzags, by 5–8% on average,
+//!    up to 2/√3 on a regular triangulation, so only a way clearly longer than the straight line
+//!    counts). The stiffness `L_c` is the cotangent Laplacian of these lengths (Heron's areas and
+//!    the cotangents from lengths alone, an intrinsic metric on the coarse triangles, as in
+//!    intrinsic triangulations, Sharp, Soliman & Crane 2019; per-triangle mollification where a
+//!    stretched edge breaks a triangle's inequality), and the coarse edge graph of the polish's
+//!    geodesics and anchors has them as its edges' lengths: an edge across a fold couples its ends
+//!    as weakly as the way around does. Measured against the chords (best acc@0.05;
+//!    docs/hierarchy-benchmark.md, "Session 50"): the 60k KIDS poses 95.68 → 96.17% over 12 seeds
+//!    (pose results at full resolution's precision, ≥ 0.997: 0 → 10 of 60), their noisy copies
+//!    92.51 → 94.33% (seeds 0–30), TOSCA's shapes subdivided to 20k on a 4,000-vertex coarse mesh
+//!    87.73 → 92.61% (seeds 0, 10; 38 shapes up, 6 down), FAUST's 90.44 → 90.98%, the SHREC'16 kids
+//!    subdivided (34–48k) 69.60 / 63.27 → 70.67 / 69.27% (best / first). The folds are not all of
+//!    it: stretching only the edges whose factor is at least 2 (0.3–1% of them) lost the gain (KIDS
+//!    95.28% over nine of the seeds, where the full stretch has 96.28 and the chords 95.78; noisy
+//!    copies 89.46%): the mild stretch of a third of the edges, which makes the coarse graph's
+//!    distances follow the fine graph's, matters as much (why is not measured). Nor is it a better
+//!    discretisation of the surface's spectrum: a coarse mesh's eigenvalues sit further from a
+//!    congruent mesh's with it (5.9% against 1.9% on two shoes), so the congruence of components
+//!    compares a coarse mesh through an eigenbasis with chord lengths (`crate::detect`). The graph
+//!    distance is a rough geodesic: on the generated quadruped at rest a tenth of the coarse edges
+//!    get a stretch above 1.2 without any fold, mostly the graph's zigzag (the fine path shortened
+//!    by chords of half the coarse edge's length brings that tenth to 1.13). Computing it: one
+//!    truncated search per coarse vertex on the fine graph, stopped once its neighbours are settled
+//!    or 8 longest edges away.
 //! 4. **Lift** ([`crate::maps::proxy`]'s local trilateration): a fine vertex is placed relative
 //!    to the images of its cell's coarse vertex and that vertex's coarse neighbours, preserving
 //!    its straight distances to them, by greedy descent on the fine mesh.
