@@ -235,7 +235,7 @@ fn stretch(positions: &[[f64; 3]], seeds: &[usize], adjacency: &(Vec<usize>, Vec
         coarse_of[s] = c as u32;
     }
     let chord = |c: usize, d: usize| crate::mesh::vec3::dist2(positions[c], positions[d]).sqrt();
-    let found: Vec<(usize, f64)> = crate::parallel::chunks(m, |range| {
+    let found: Vec<(usize, usize, f64)> = crate::parallel::chunks(m, |range| {
         let mut scratch = vec![f64::INFINITY; fine];
         let mut out = Vec::new();
         for c in range {
@@ -259,7 +259,7 @@ fn stretch(positions: &[[f64; 3]], seeds: &[usize], adjacency: &(Vec<usize>, Vec
             for (k, g) in want {
                 let length = chord(c, nbr[k] as usize);
                 let factor = if length > 0.0 { (GRAPH_TO_GEODESIC * g.min(reach) / length).max(1.0) } else { 1.0 };
-                out.push((k, factor));
+                out.push((c, k, factor));
             }
         }
         out
@@ -268,10 +268,9 @@ fn stretch(positions: &[[f64; 3]], seeds: &[usize], adjacency: &(Vec<usize>, Vec
     .flatten()
     .collect();
     let mut stretch = vec![1.0; nbr.len()];
-    for (k, factor) in found {
+    for (c, k, factor) in found {
         stretch[k] = factor;
         // The same edge seen from its other end.
-        let c = off.partition_point(|&o| o <= k) - 1;
         let d = nbr[k] as usize;
         if let Ok(i) = nbr[off[d]..off[d + 1]].binary_search(&(c as u32)) {
             stretch[off[d] + i] = factor;
