@@ -14,6 +14,7 @@
 
 use sprs::CsMat;
 
+use crate::mesh::vec3::dist2;
 use crate::mesh::Mesh;
 
 /// Mollification margin relative to the mean edge length (the value of Sharp & Crane's code).
@@ -22,21 +23,9 @@ pub const MOLLIFY_REL: f64 = 1e-6;
 /// `(m, 3)` edge lengths per triangle, `l[t][k]` opposite corner `k`, after mollification.
 pub fn mollified_edge_lengths(mesh: &Mesh) -> Vec<[f64; 3]> {
     let v = &mesh.vertices;
-    let dist = |a: u32, b: u32| {
-        let (p, q) = (v[a as usize], v[b as usize]);
-        ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) + (p[2] - q[2]).powi(2)).sqrt()
-    };
-    let mut lengths: Vec<[f64; 3]> = mesh
-        .triangles
-        .iter()
-        .map(|t| [dist(t[1], t[2]), dist(t[2], t[0]), dist(t[0], t[1])])
-        .collect();
-    let mean = lengths.iter().flatten().sum::<f64>() / (3 * lengths.len()) as f64;
-    let delta = MOLLIFY_REL * mean;
-    let eps = lengths
-        .iter()
-        .flat_map(|l| (0..3).map(move |k| delta - (l[(k + 1) % 3] + l[(k + 2) % 3] - l[k])))
-        .fold(0.0f64, f64::max);
+    let mut lengths = triangle_lengths(mesh, |a, b| dist2(v[a as usize], v[b as usize]).sqrt());
+    let delta = margin(&lengths);
+    let eps = lengths.iter().map(|l| shortfall(l, delta)).fold(0.0f64, f64::max);
     if eps > 0.0 {
         for l in &mut lengths {
             for x in l.iter_mut() {
@@ -61,17 +50,31 @@ pub fn stretched_edge_lengths(mesh: &Mesh, adjacency: &(Vec<usize>, Vec<u32>), s
         row.binary_search(&b).map_or(1.0, |i| stretch[off[a as usize] + i])
     };
     let v = &mesh.vertices;
-    let dist = |a: u32, b: u32| crate::mesh::vec3::dist2(v[a as usize], v[b as usize]).sqrt() * factor(a, b);
-    let mut lengths: Vec<[f64; 3]> = mesh.triangles.iter().map(|t| [dist(t[1], t[2]), dist(t[2], t[0]), dist(t[0], t[1])]).collect();
-    let mean = lengths.iter().flatten().sum::<f64>() / (3 * lengths.len()).max(1) as f64;
-    let delta = MOLLIFY_REL * mean;
+    let mut lengths = triangle_lengths(mesh, |a, b| dist2(v[a as usize], v[b as usize]).sqrt() * factor(a, b));
+    let delta = margin(&lengths);
     for l in &mut lengths {
-        let eps = (0..3).map(|k| delta - (l[(k + 1) % 3] + l[(k + 2) % 3] - l[k])).fold(0.0f64, f64::max);
+        let eps = shortfall(l, delta);
         if eps > 0.0 {
             l.iter_mut().for_each(|x| *x += eps);
         }
     }
     lengths
+}
+
+/// Each triangle's three lengths `length(a, b)`, `l[t][k]` opposite corner `k`.
+fn triangle_lengths(mesh: &Mesh, length: impl Fn(u32, u32) -> f64) -> Vec<[f64; 3]> {
+    mesh.triangles.iter().map(|t| [length(t[1], t[2]), length(t[2], t[0]), length(t[0], t[1])]).collect()
+}
+
+/// The mollification margin `δ = MOLLIFY_REL · (mean length)`.
+fn margin(lengths: &[[f64; 3]]) -> f64 {
+    MOLLIFY_REL * (lengths.iter().flatten().sum::<f64>() / (3 * lengths.len()).max(1) as f64)
+}
+
+/// The least `ε ≥ 0` by which a triangle's three lengths must all grow to satisfy the triangle
+/// inequality with margin `δ` (`l_j + l_k − l_i ≥ δ` for every side `i`).
+fn shortfall(l: &[f64; 3], delta: f64) -> f64 {
+    (0..3).map(|k| delta - (l[(k + 1) % 3] + l[(k + 2) % 3] - l[k])).fold(0.0f64, f64::max)
 }
 
 /// Area of a triangle with side lengths `l` (Heron, in the numerically stable ordering).
