@@ -25,6 +25,14 @@
 //! normals, or on the chord against the length across the collapsed vertex's fan) made the
 //! right maps more precise but moved the failures about and broke the noisy scans:
 //! docs/hierarchy-benchmark.md, "Session 49".
+//!
+//! **Known limit: detail where the fine mesh is dense.** The length term makes the coarse
+//! mesh even, so a region the scan samples densely because it has detail (the KIDS poses'
+//! hands: 46 fine vertices per coarse one, 10 on average) keeps as few coarse vertices as a
+//! smooth one; the hands become mittens, and the maps place their points a few units off on every
+//! pose (most of the 1.9 points between the coarse mesh and full resolution there). Weighting
+//! the length term by the fine density closes the gap on the scans but thins out the sparse
+//! legs of generated shapes: measured and not kept, docs/hierarchy-benchmark.md, "Session 51".
 
 use crate::mesh::sorted_edge_keys;
 use crate::mesh::vec3::{cross, dot, sub};
