@@ -14,19 +14,14 @@ vertices, with Dijkstra geodesics on the edge graph over sqrt(area) (each edge o
   * the mean over sample pairs of |g(a_i, a_j) - g(b_i, b_j)| for the true and the map's b_i.
 """
 import json
+import os
 import sys
 
 import numpy as np
-import scipy.sparse as sp
 from scipy.sparse.csgraph import dijkstra
 
-
-def read_off(path):
-    words = open(path).read().split()
-    n, f = int(words[1]), int(words[2])
-    v = np.array(words[4:4 + 3 * n], float).reshape(n, 3)
-    t = np.array(words[4 + 3 * n:4 + 3 * n + 4 * f], int).reshape(f, 4)[:, 1:]
-    return v, t
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from hierarchy import edge_graph, read_off  # noqa: E402
 
 
 def main():
@@ -39,8 +34,7 @@ def main():
     truth[gt[:, 0]] = gt[:, 1]
     area = 0.5 * np.linalg.norm(np.cross(v[t[:, 1]] - v[t[:, 0]], v[t[:, 2]] - v[t[:, 0]]), axis=1).sum()
     v = v / np.sqrt(area)
-    e = np.unique(np.sort(np.vstack([t[:, [0, 1]], t[:, [1, 2]], t[:, [2, 0]]]), 1), axis=0)
-    graph = sp.coo_matrix((np.linalg.norm(v[e[:, 0]] - v[e[:, 1]], axis=1), (e[:, 0], e[:, 1])), shape=(n, n)).tocsr()
+    graph = edge_graph(v, t)
     geo = lambda idx: dijkstra(graph, directed=False, indices=idx)
     have = np.where(truth >= 0)[0]
     samples = [have[0]]
