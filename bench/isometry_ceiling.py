@@ -38,6 +38,9 @@ import tempfile
 import numpy as np
 import scipy.sparse as sp
 from scipy.sparse.csgraph import dijkstra
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from hierarchy import edge_graph  # noqa: E402
 from scipy.sparse.linalg import eigsh
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -53,16 +56,6 @@ def load_off(path):
         nv, nf = int(head[0]), int(head[1])
         data = np.array(f.read().split(), dtype=float)
     return data[: 3 * nv].reshape(nv, 3), data[3 * nv : 3 * nv + 4 * nf].reshape(nf, 4)[:, 1:].astype(int)
-
-
-def edge_graph(v, f):
-    """The edge graph with each edge once (a constructor that sums duplicates halves radii)."""
-    e = np.vstack([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]])
-    e.sort(1)
-    e = np.unique(e, axis=0)
-    w = np.linalg.norm(v[e[:, 0]] - v[e[:, 1]], axis=1)
-    n = len(v)
-    return sp.coo_matrix((np.r_[w, w], (np.r_[e[:, 0], e[:, 1]], np.r_[e[:, 1], e[:, 0]])), shape=(n, n)).tocsr()
 
 
 def surface_area(v, f):
@@ -132,7 +125,7 @@ def main():
                     return np.abs(d0[:, xs] - heat(image[src])[:, image]).mean()
 
                 sub = np.arange(0, len(xs), 3)
-                dg = dijkstra(edge_graph(v, f), indices=gx[sub]) / root
+                dg = dijkstra(edge_graph(v, f), directed=False, indices=gx[sub]) / root
                 acc = lambda image: float((dg[np.arange(len(sub)), image[sub]] <= 0.05).mean())
                 row = (ds, name, acc(img), distortion(img), distortion(gx), distortion(smooth[xs]), acc(smooth[xs]))
                 rows.append(row)
