@@ -38,10 +38,10 @@ import tempfile
 import numpy as np
 import scipy.sparse as sp
 from scipy.sparse.csgraph import dijkstra
+from scipy.sparse.linalg import eigsh
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from hierarchy import edge_graph  # noqa: E402
-from scipy.sparse.linalg import eigsh
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 DATA = os.path.join(HERE, "..", "..", "shared", "data")
