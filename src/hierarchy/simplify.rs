@@ -33,8 +33,8 @@
 //! pose (most of the 1.9 points between the coarse mesh and full resolution there). Weighting
 //! the length term by the fine density closes the gap on the scans but thins out the sparse
 //! legs of generated shapes: measured and not kept, docs/hierarchy-benchmark.md, "Session 51".
-//! Weighting only the denser side, with the target grown so that the rest keeps its vertices,
-//! gains within the benchmark's noise and fails the thin-legs test in one of two builds of the
+//! Weighting only the denser side, with the target grown by what the weights add, gains
+//! within the benchmark's noise and fails the thin-legs test in one of two builds of the
 //! same weights ("Session 52").
 
 use crate::mesh::sorted_edge_keys;
