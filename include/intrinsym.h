@@ -8,7 +8,7 @@
 #include <stdint.h>
 #define SYM_VERSION_MAJOR 0
 #define SYM_VERSION_MINOR 7
-#define SYM_VERSION_PATCH 13
+#define SYM_VERSION_PATCH 14
 
 
 /**

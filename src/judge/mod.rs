@@ -40,7 +40,7 @@
 //!   and kid05 against 0.15–0.19 for their mirrors).
 //!
 //! With the coverage `c` (the fraction of stencil centres the map is defined on) the score is
-//! $$J = c \cdot |2r - 1| \cdot (1 - f) \cdot \frac{1}{1 + 2δ/δ_{max}} \cdot \frac{1}{1 + κ/κ_{½}} \cdot (1 - t_+^4),$$
+//! $$J = c \cdot |2r - 1| \cdot (1 - f) \cdot \frac{1}{1 + 2δ/δ_{max}} \cdot \frac{1}{1 + κ/κ_{½}} \cdot (1 - t_+^4)^2,$$
 //! `κ_½ = 0.5`, `t_+ = max(t, 0)` (the curvature and band factors are 1 when the judge has
 //! neither).
 //! Every factor is 1 for a perfect global isometry of one orientation type that fixes nothing,
@@ -68,7 +68,8 @@
 //! part is placed anew from the rest of the map (session 18: first 83.8 → 85.2% over
 //! shared/data).
 //!
-//! **The band factor** `1 − t₊⁴` (session 26, `docs/accuracy.md`; in every judge of the
+//! **The band factor** `(1 − t₊⁴)²` (session 26 `1 − t₊⁴`, squared in session 53;
+//! `docs/accuracy.md`; in every judge of the
 //! pipeline but that of congruent components' swaps, whose components each have their own
 //! eigenfunctions). Over the release's 300 maps of shared/data at seed 0, every map with acc@0.05 >
 //! 0.5 has `t` ≤ 0.61 (median 0.20), and a quarter of the wrong ones have `t` > 0.6 on the 5
@@ -80,6 +81,19 @@
 //! (SHREC'16 first 61.8 → 65.1, up at 6 of 6 seeds), 88.7 / 87.6% in the maps stage's judge
 //! too (versions of a mirror drifting toward the identity lose during refinement: SHREC'16
 //! 70.8 / 65.9, FAUST 92.6 / 92.3); no dataset down.
+//! *Squared* (session 53, with the hierarchy's `LENGTH_WEIGHT` 10 → 3): the factor is
+//! 0.96 at `t` = 0.37, 0.76 at 0.6 (between the fourth power's 0.87 and the square's 0.64)
+//! and 0.37 at 0.79 (the fourth power's 0.61), the band trace of the front↔back flip that
+//! outscored the mirror of the subdivided SHREC'16 kid01 (flip 0.182 against the mirror's
+//! 0.150: the glued, fused scan distorts its mirror five times more than the flip, 0.049
+//! against 0.0094). Re-ranking the reported maps offline, `(1 − t⁴)²` was the mildest
+//! form that ranked that mirror first on the subdivided and ×4 copies at seeds 0 and 10
+//! (`1 − t³` missed one of four, `1 − t²` lost kid13's mirror on ×4) and changed no first
+//! map of shared/data at seed 0. Measured in every judge, with β = 3, seeds 0, 10, 20, 30,
+//! best / first acc@0.05: all of shared/data 91.01 / 90.95 → 91.11 / 91.07% (TOSCA 93.25 →
+//! 93.33, FAUST 92.98 → 93.01, SHREC'16 74.69 / 74.18 → 74.64 / 74.30, KIDS 96.10 → 97.23);
+//! the subdivided SHREC'16 copies' first map (seeds 0, 10) 69.27 → 72.62%; the generated
+//! narrow animal keeps its mirror.
 //!
 //! **A known bias: smooth beats precise** (session 43, `docs/accuracy.md`). Between two
 //! versions of one symmetry the judge prefers the smoother, even when it is the less precise:
@@ -356,7 +370,7 @@ impl Judge {
         let v = Verdict { reversal, fixed, coverage, score: 0.0, curvature, band_trace };
         let fit = if max_distortion > 0.0 && distortion.is_finite() { 1.0 / (1.0 + 2.0 * distortion / max_distortion) } else if distortion.is_finite() { 1.0 } else { 0.0 };
         let keeps = 1.0 / (1.0 + curvature / CURVATURE_HALF);
-        let moves = 1.0 - band_trace.max(0.0).powi(4);
+        let moves = (1.0 - band_trace.max(0.0).powi(4)).powi(2);
         Verdict { score: coverage * v.coherence() * (1.0 - fixed) * fit * keeps * moves, ..v }
     }
 
@@ -522,7 +536,7 @@ mod tests {
     /// for an exact mirror (each non-degenerate eigenfunction is even or odd under it). Every
     /// mirror of an ellipsoid with three distinct axes keeps odd functions in the band, even
     /// the face swap of a flat one (axes 1.6 × 1.2 × 0.1: three of ten are odd), whose score
-    /// the factor `1 − t⁴` then lowers by less than 3%.
+    /// the factor `(1 − t⁴)²` then lowers by less than 6%.
     #[test]
     fn the_band_trace_counts_parities_and_sees_the_identity() {
         let band_of = |mesh: &Mesh| {
@@ -544,7 +558,7 @@ mod tests {
         let swap = flip(&flat, 2);
         let (p, v) = (plain.judge(&swap, 0.0, 0.04), judge.judge(&swap, 0.0, 0.04));
         assert!((0.1..=0.8).contains(&v.band_trace) && p.band_trace == 0.0, "{v:?}");
-        assert!((v.score - p.score * (1.0 - v.band_trace.powi(4))).abs() < 1e-12 && v.score >= 0.97 * p.score, "{p:?} {v:?}");
+        assert!((v.score - p.score * (1.0 - v.band_trace.powi(4)).powi(2)).abs() < 1e-12 && v.score >= 0.94 * p.score, "{p:?} {v:?}");
         let still: Vec<i64> = (0..flat.num_vertices() as i64).collect();
         let id = judge.judge(&still, 0.0, 0.04);
         assert!((id.band_trace - 1.0).abs() < 1e-9 && id.score == 0.0, "{id:?}");
