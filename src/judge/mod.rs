@@ -89,11 +89,12 @@
 //! against 0.0094). Re-ranking the reported maps offline, `(1 − t⁴)²` was the mildest
 //! form that ranked that mirror first on the subdivided and ×4 copies at seeds 0 and 10
 //! (`1 − t³` missed one of the four; `1 − t²`, which fixed all four, is the square that
-//! cost the narrow animal its mirror) and changed no first map of shared/data at seed 0. Measured in every judge, with β = 3, seeds 0, 10, 20, 30,
-//! best / first acc@0.05: all of shared/data 91.01 / 90.95 → 91.11 / 91.07% (TOSCA 93.25 →
-//! 93.33, FAUST 92.98 → 93.01, SHREC'16 74.69 / 74.18 → 74.64 / 74.30, KIDS 96.10 → 97.23);
-//! the subdivided SHREC'16 copies' first map (seeds 0, 10) 69.27 → 72.62%; the generated
-//! narrow animal keeps its mirror.
+//! cost the narrow animal its mirror) and changed no first map of shared/data at seed 0.
+//! Measured in every judge, with β = 3, seeds 0, 10, 20, 30, best / first acc@0.05: all of
+//! shared/data 91.01 / 90.95 → 91.11 / 91.07% (TOSCA 93.25 → 93.33, FAUST 92.98 → 93.01,
+//! SHREC'16 74.69 / 74.18 → 74.64 / 74.30, KIDS 96.10 → 97.23); the subdivided SHREC'16
+//! copies' first map (seeds 0, 10) 69.27 → 72.62%; the generated narrow animal keeps its
+//! mirror.
 //!
 //! **A known bias: smooth beats precise** (session 43, `docs/accuracy.md`). Between two
 //! versions of one symmetry the judge prefers the smoother, even when it is the less precise:
