@@ -50,7 +50,7 @@ enum Command {
         #[arg(long, default_value_t = 2, value_parser = restart_count)]
         restarts: usize,
         /// Leave out symmetries whose score is below this fraction of the strongest one's, in [0, 1] (0: report every one found).
-        #[arg(long, default_value_t = 0.1, value_parser = fraction)]
+        #[arg(long, default_value_t = 0.2, value_parser = fraction)]
         min_score_ratio: f64,
         /// Report a partial symmetry before a global one only if it scores more than this many times higher, ≥ 1 (1: rank by score alone).
         #[arg(long, default_value_t = 3.0, value_parser = at_least_one)]

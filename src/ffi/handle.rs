@@ -310,7 +310,7 @@ pub extern "C" fn sym_params_set_restarts(params: *mut sym_params, value: usize)
 }
 
 /// Symmetries whose judge's score is below this fraction of the strongest one's are not
-/// reported, in [0, 1] (default 0.1; 0: every symmetry found, the weak ones included). Returns
+/// reported, in [0, 1] (default 0.2; 0: every symmetry found, the weak ones included). Returns
 /// `SYM_STATUS_INVALID_ARGUMENT` (settings unchanged) outside the range.
 #[no_mangle]
 pub extern "C" fn sym_params_set_min_score_ratio(params: *mut sym_params, value: f64) -> sym_status {
