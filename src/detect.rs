@@ -261,8 +261,8 @@ pub struct Params {
     /// map or a weaker version of the first. Raised from 0.1 in session 54 (docs/accuracy.md):
     /// over shared/data at seeds 0, 10, 20, 30 the global maps reported per shape fall from
     /// 1.73 to 1.55, and no shape's best or first acc@0.05 moves, nor on the KIDS poses and
-    /// their noisy copies at 12 seeds or the subdivided SHREC'16 kids (nor, re-ranked offline,
-    /// on the ×4 copies). Ratios up to 0.5 lose only wrong maps that were a shape's best
+    /// their noisy copies at 12 seeds, the subdivided SHREC'16 kids and the ×4 copies.
+    /// Ratios up to 0.5 lose only wrong maps that were a shape's best
     /// (0.25: SHREC'16 kid09's 0.44 at seed 0, its first 0.30): no shape whose best map is
     /// right (acc@0.05 ≥ 0.5) loses it; the right maps left out are weaker versions of the
     /// first. A generated shape's true symmetries score alike (the flat five-armed star's
