@@ -8,7 +8,7 @@
 #include <stdint.h>
 #define SYM_VERSION_MAJOR 0
 #define SYM_VERSION_MINOR 7
-#define SYM_VERSION_PATCH 15
+#define SYM_VERSION_PATCH 16
 
 
 /**
@@ -287,8 +287,10 @@ sym_status sym_params_set_restarts(sym_params *params, size_t value);
 
 /**
  * Symmetries whose judge's score is below this fraction of the strongest one's are not
- * reported, in [0, 1] (default 0.2; 0: every symmetry found, the weak ones included). Returns
- * `SYM_STATUS_INVALID_ARGUMENT` (settings unchanged) outside the range.
+ * reported, in [0, 1] (default 0.2; 0: every symmetry found, the weak ones included); above
+ * 0, neither is a global map that agrees with a stronger reported one of its orientation
+ * type on 30% of the probes (a weaker version of it). Returns `SYM_STATUS_INVALID_ARGUMENT`
+ * (settings unchanged) outside the range.
  */
 sym_status sym_params_set_min_score_ratio(sym_params *params, double value);
 

@@ -49,7 +49,7 @@ enum Command {
         /// Further searches from other first samples (seeds seed+1, seed+2, …) while the strongest symmetry found scores below 0.4; their symmetries are pooled, 0 to 8 (0: one search).
         #[arg(long, default_value_t = 2, value_parser = restart_count)]
         restarts: usize,
-        /// Leave out symmetries whose score is below this fraction of the strongest one's, in [0, 1] (0: report every one found).
+        /// Leave out symmetries whose score is below this fraction of the strongest one's, and (above 0) global maps that are weaker versions of a reported one, in [0, 1] (0: report every one found).
         #[arg(long, default_value_t = 0.2, value_parser = fraction)]
         min_score_ratio: f64,
         /// Report a partial symmetry before a global one only if it scores more than this many times higher, ≥ 1 (1: rank by score alone).
