@@ -1237,14 +1237,15 @@ fn better(a: &Found, than: &Found) -> bool {
 /// ([`without_weaker_versions`]). Two distinct isometries agree only near the points both fix;
 /// what agrees with a stronger map on a good part of the shape is a hybrid of it (a
 /// half-identity: the mirror on one half, the identity on the other) or a poorer version the
-/// polish left apart (merged there only at 80%). The version rule between searches
-/// ([`pool`]) takes half the probes. Measured offline over the reported maps of shared/data
-/// at seeds 0 and 10 (0.7.15's runs with every map's agreement logged; the agreements of
-/// weaker same-type maps with the first spread over 0.03–0.73): at 0.2, 0.3, 0.4 and 0.5 no
-/// shape's best or first map is left out, and the global maps reported per shape fall from
-/// 1.40 to 1.23, 1.25, 1.29 and 1.32; 0.3 keeps twice the agreement that maps have by chance
-/// near a mirror plane (at most 0.15: a half-turn's and a mirror's fixed points, seven maps
-/// at 0.03–0.05 in those runs). Measured as a build in docs/accuracy.md, "Session 55".
+/// polish left apart (a search merges versions there only at 80%; the pool of searches,
+/// [`pool`], at half the probes). Measured offline over the reported maps of shared/data at
+/// seeds 0 and 10 (0.7.15's runs with every map's agreement logged; the agreements of weaker
+/// same-type maps with the first spread over 0.03–0.73 without a gap): at 0.2, 0.3, 0.4 and
+/// 0.5 no shape's best or first map is left out (TOSCA, FAUST, SHREC'16), and their global
+/// maps reported per shape fall from 1.48 to 1.31, 1.32, 1.37 and 1.40. 0.3 stays well above
+/// the agreement two maps have by chance near a mirror plane (seven maps at 0.03–0.05 in
+/// those runs). As a build over shared/data at four seeds: 1.55 → 1.38 maps, no best or
+/// first map moved (docs/accuracy.md, "Session 55").
 const VERSION_AGREEMENT: f64 = 0.3;
 
 /// `found` in the report's order without the global maps that agree with an earlier (so at
