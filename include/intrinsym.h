@@ -289,8 +289,8 @@ sym_status sym_params_set_restarts(sym_params *params, size_t value);
  * Symmetries whose judge's score is below this fraction of the strongest one's are not
  * reported, in [0, 1] (default 0.2; 0: every symmetry found, the weak ones included); above
  * 0, neither is a global map that agrees with a stronger reported one of its orientation
- * type on 30% of the probes (a weaker version of it). Returns `SYM_STATUS_INVALID_ARGUMENT`
- * (settings unchanged) outside the range.
+ * type on 30% of the probes and fixes at least half as many vertices (a weaker version of
+ * it). Returns `SYM_STATUS_INVALID_ARGUMENT` (settings unchanged) outside the range.
  */
 sym_status sym_params_set_min_score_ratio(sym_params *params, double value);
 

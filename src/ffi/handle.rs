@@ -312,8 +312,8 @@ pub extern "C" fn sym_params_set_restarts(params: *mut sym_params, value: usize)
 /// Symmetries whose judge's score is below this fraction of the strongest one's are not
 /// reported, in [0, 1] (default 0.2; 0: every symmetry found, the weak ones included); above
 /// 0, neither is a global map that agrees with a stronger reported one of its orientation
-/// type on 30% of the probes (a weaker version of it). Returns `SYM_STATUS_INVALID_ARGUMENT`
-/// (settings unchanged) outside the range.
+/// type on 30% of the probes and fixes at least half as many vertices (a weaker version of
+/// it). Returns `SYM_STATUS_INVALID_ARGUMENT` (settings unchanged) outside the range.
 #[no_mangle]
 pub extern "C" fn sym_params_set_min_score_ratio(params: *mut sym_params, value: f64) -> sym_status {
     set(params, "sym_params_set_min_score_ratio", "0 to 1", (0.0..=1.0).contains(&value), value, |p| p.params.min_score_ratio = value)
