@@ -1099,7 +1099,7 @@ fn pipeline(mesh: &Mesh, params: &Params, measured: Option<Measured<'_>>, curvat
         timings.accumulate(&run_timings);
         candidates += run.candidates;
         let (probes, diameter, _) = first.get_or_insert_with(|| (run.samples.clone(), run.diameter, run.anchors));
-        pool(&mut found, run.found, &mesh_judge, emb, probes, params.maps.accept * 2.0 * *diameter, params);
+        pool(&mut found, run.found, &mesh_judge, emb, probes, agreement_tolerance(params, *diameter), params);
         if strongest(&found, params) >= params.restart_below {
             break;
         }
@@ -1169,6 +1169,13 @@ fn keep_better(kept: &mut Vec<Found>, known: Option<usize>, f: Found) -> bool {
             true
         }
     }
+}
+
+/// The distance in the biharmonic embedding within which two maps' images of a probe agree
+/// (versions of one symmetry, [`agreement`]; a map's order, `characterize::order`): twice the
+/// polish's tolerance `MapParams::accept`, on samples of biharmonic diameter `diameter`.
+fn agreement_tolerance(params: &Params, diameter: f64) -> f64 {
+    params.maps.accept * 2.0 * diameter
 }
 
 /// Whether maps `a` and `b` agree (images within `tol` in the biharmonic embedding) on at
@@ -1259,9 +1266,9 @@ const VERSION_AGREEMENT: f64 = 0.3;
 /// [`VERSION_AGREEMENT`] of the probes (`agreement`) and fix at least half as many vertices
 /// as it. Partial maps and the parts stage's are kept as they are.
 fn without_weaker_versions(found: Vec<Found>, agreement: impl Fn(&maps::DenseMap, &maps::DenseMap) -> f64) -> Vec<Found> {
+    let global = |g: &Found| g.dense.global && !g.part;
     let mut kept: Vec<Found> = Vec::with_capacity(found.len());
     for f in found {
-        let global = |g: &Found| g.dense.global && !g.part;
         // A map fixing fewer than half as many vertices as the stronger one it agrees with is
         // kept: the stronger is then the half-identity of the weaker (the judge ranked them the
         // wrong way round), and the weaker the symmetry.
@@ -1445,7 +1452,7 @@ fn search(shared: &Shared<'_>, params: &Params, seed: u64, timings: &mut Timings
         None => (emb, basis, mesh_context(shared, probes, vinfo.diameter, params)),
     };
     let measure = Measure { probes, emb, basis, diameter: vinfo.diameter, params };
-    let agree_tol = params.maps.accept * 2.0 * vinfo.diameter;
+    let agree_tol = agreement_tolerance(params, vinfo.diameter);
     // Of two versions of one symmetry the `better` one is kept.
     let verdict = |m: &maps::DenseMap| ctx.verdict(&m.map).unwrap_or_default();
     let mut found: Vec<Found> = Vec::new();
@@ -1921,8 +1928,9 @@ fn report(mesh: &Mesh, mesh_judge: &Judge, mut found: Vec<Found>, emb: &crate::d
     found.sort_by(|a, b| report_order(a, b, params));
     // Nor a weaker version of a reported global map (`VERSION_AGREEMENT`), unless every
     // symmetry found is asked for (`min_score_ratio` 0).
+    let tol = agreement_tolerance(params, diameter);
     if params.min_score_ratio > 0.0 {
-        found = without_weaker_versions(found, |a, b| agreement(a, b, probes, emb, params.maps.accept * 2.0 * diameter));
+        found = without_weaker_versions(found, |a, b| agreement(a, b, probes, emb, tol));
     }
     // Pooled searches can together find more than the cap.
     cap_each_stage(&mut found, |f| f.part, params.max_symmetries);
@@ -1934,13 +1942,12 @@ fn report(mesh: &Mesh, mesh_judge: &Judge, mut found: Vec<Found>, emb: &crate::d
             !std::mem::replace(seen, true)
         });
     }
-    let order_tol = params.maps.accept * 2.0 * diameter;
     let mut symmetries: Vec<Symmetry> = found
         .into_iter()
         .map(|f| {
             let fmap = maps::functional_map(basis, &f.dense.map, params.maps.fmap_size);
             let complexity = f.complexity;
-            let order = characterize::order(&f.dense.map, probes, emb, order_tol, params.max_order);
+            let order = characterize::order(&f.dense.map, probes, emb, tol, params.max_order);
             let kind = if f.dense.global { Kind::Global } else { Kind::Partial };
             let to_input = |v: usize| mesh.input_index[v] as usize;
             let (map, confidence) = in_input_indices(mesh, &f.dense);
